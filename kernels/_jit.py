@@ -1,0 +1,18 @@
+"""The one place where numba options live.
+
+Every compiled function of the package is decorated with :func:`jit`: cached on disk,
+numpy's error model (division by zero gives inf/nan, which explicit finite checks catch),
+and no fastmath (it would silently break ``isnan``/``isfinite``).  With
+``NUMBA_DISABLE_JIT=1`` the decorator returns plain Python functions.
+"""
+import numba
+
+_OPTIONS = dict(cache=True, error_model="numpy", fastmath=False, nogil=True)
+
+
+def jit(func=None, **overrides):
+    """``numba.njit`` with the project's options (usable bare or with overrides)."""
+    options = {**_OPTIONS, **overrides}
+    if func is None:
+        return lambda f: numba.njit(**options)(f)
+    return numba.njit(**options)(func)

@@ -1,0 +1,70 @@
+"""Integer codes shared by the kernel and its users.
+
+Modes (the paper's six motion types), end statuses, ground-motion kinds, and the layout of
+the flat float64 parameter row that describes one scene to the compiled code.  The name
+tuples feed error messages and the CF ``flag_meanings`` of the output datasets.
+"""
+
+# --- modes (Ishiyama's Fig. 1) -------------------------------------------------------------
+REST, SLIDE, ROTATION, SLIDE_ROTATION, TRANSLATION_JUMP, ROTATION_JUMP = range(6)
+MODE_NAMES = ("rest", "slide", "rotation", "slide_rotation", "translation_jump", "rotation_jump")
+N_MODES = 6
+
+# --- end status of a scene ------------------------------------------------------------------
+OK, OVERTURNED, BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE = range(5)
+STATUS_NAMES = ("ok", "overturned", "budget_exhausted", "non_finite", "painleve")
+STATUS_MESSAGES = (
+    "the scene ran to its end time or to final rest",
+    "the body overturned (|theta| reached the overturning angle)",
+    "the step or event budget was used up before the end time",
+    "a non-finite state was met",
+    "Painleve paradox: the contact problem has no consistent solution (D <= 0)",
+)
+FAILED_STATUSES = (BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE)
+
+# --- outcome of a cell in a study -----------------------------------------------------------
+FAILED, NO_ROCKING, ROCKED, OVERTURN = -1, 0, 1, 2
+OUTCOME_NAMES = ("failed", "no_rocking", "rocked", "overturned")  # for codes -1, 0, 1, 2
+
+# --- integrators ----------------------------------------------------------------------------
+ADAPTIVE, FIXED = 0, 1
+METHOD_NAMES = ("adaptive", "fixed")
+
+# --- ground-motion kinds --------------------------------------------------------------------
+G_NONE, G_SINE, G_SWEEP, G_RECORD, G_PULSE_RECT, G_PULSE_TRI = range(6)
+GROUND_KIND_NAMES = ("none", "sine", "sweep", "record", "pulse_rectangular", "pulse_triangular")
+LAW_LOG, LAW_LINEAR = 0, 1
+HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
+
+# Ground component parameters (12 floats per component).  SI units.
+#   G_AMP: sine/pulse: acceleration amplitude [m/s^2]; sweep: the held amplitude
+#          (m/s^2, m/s or m after G_HOLD); record: scale factor on the samples [-]
+#   G_FREQ: sine frequency [Hz]; G_F0/G_F1: sweep start/stop frequency [Hz]
+#   G_START, G_DUR: the window [s] (G_DUR = inf: no end; sweep: the sweep length)
+#   G_REC_OFF, G_REC_N, G_REC_DT: slice of the shared record buffer and its sample step
+(G_KIND, G_AMP, G_FREQ, G_PHASE, G_START, G_DUR, G_F0, G_F1, G_LAW, G_HOLD,
+ G_REC_OFF, G_REC_N, G_REC_DT) = range(13)
+G_SIZE = 13
+
+# Scene parameter row.  Body [m, m, m^2], contact [-], initial state, solver options, then
+# the horizontal ground (P_GX ...) and the vertical ground (P_GY ...).
+(P_B, P_H, P_I2,
+ P_MU_S, P_MU_K, P_MU_EDGE_S, P_MU_EDGE_K, P_E_X, P_E_Y,
+ P_THETA0, P_OMEGA0, P_U0, P_V0, P_LIFT0,
+ P_METHOD, P_RTOL, P_ATOL, P_DT, P_MAX_STEP, P_T_END, P_MAX_STEPS, P_MAX_EVENTS,
+ P_THETA_OVER, P_ZENO_DT, P_DT_OUT) = range(25)
+P_GX = 25
+P_GY = P_GX + G_SIZE
+N_PAR = P_GY + G_SIZE
+
+# Per-cell scalar results (float64 row).
+(R_STATUS, R_T_END, R_T_OVERTURN, R_DIRECTION, R_MAX_ABS_THETA, R_IMPACTS, R_T_REST,
+ R_MAX_SLIP, R_MAX_LIFT, R_STEPS, R_EVENTS, R_ENERGY_CLAMPS,
+ R_F_AT_OVERTURN, R_A_AT_OVERTURN, R_V_AT_OVERTURN) = range(15)
+R_MODE_TIME = 15                      # six entries, seconds in each mode
+N_RES = R_MODE_TIME + N_MODES
+
+# History columns (when asked for): sampled every P_DT_OUT seconds.
+(H_T, H_X, H_Y, H_THETA, H_U, H_V, H_OMEGA, H_MODE, H_AX, H_AY) = range(10)
+N_HIST = 10
+HISTORY_NAMES = ("t", "x", "y", "theta", "u", "v", "omega", "mode", "a_x", "a_y")

@@ -1,0 +1,193 @@
+"""Equations of motion of the six modes (PHYSICS.md section 1.2), in the floor frame.
+
+Each mode integrates only its own degrees of freedom, packed in a compact state ``z``:
+
+=================  ======================  =====================================
+mode               z                       derived (``to_full``)
+=================  ======================  =====================================
+rest               (none)                  x = ctx[CTX_X]
+slide              x, u                    y = h, theta = v = omega = 0
+rotation           theta, omega            x, y, u, v from the pivot ctx[CTX_X]
+slide_rotation     theta, omega, x, u      y, v from the contact constraint
+translation_jump   x, y, u, v              theta = omega = 0
+rotation_jump      x, y, theta, u, v, w    -
+=================  ======================  =====================================
+
+The full state is ``q = (x, y, theta, u, v, omega)`` (G relative to the floor, y = h when
+flat).  ``ctx`` holds the contact corner sign s (-1 left, +1 right), the slip direction
+sigma and the pivot (rotation) or rest position x.  theta > 0 is rotation about the left
+corner, which a floor acceleration to the right drives.  Forces are per unit mass.
+"""
+import math
+
+from ._jit import jit
+from .codes import REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP
+from .ground import G, ground
+
+IX, IY, ITHETA, IU, IV, IOMEGA = range(6)
+CTX_S, CTX_SIGMA, CTX_X = range(3)
+N_CTX = 3
+
+
+@jit
+def n_dof(mode):
+    """Number of integrated degrees of freedom (length of z) of a mode."""
+    if mode == REST:
+        return 0
+    if mode == SLIDE or mode == ROTATION:
+        return 2
+    if mode == ROTATION_JUMP:
+        return 6
+    return 4
+
+
+@jit
+def corner(s, theta, b, h):
+    """Vector r_c from G to corner s (-1 left, +1 right) at angle theta (PHYSICS 1.1)."""
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    return s * b * c + h * sn, s * b * sn - h * c
+
+
+@jit
+def rotation_dynamics(theta, omega, s, a_x, g_e, b, h, i2):
+    """Rocking about the fixed corner s: (theta'', F_c/m, N_c/m), PHYSICS 1.2 (3).
+
+    rho = -r_c points from the pivot to G; (i^2 + r^2) theta'' = a_x rho_y - g_e rho_x.
+    """
+    rcx, rcy = corner(s, theta, b, h)
+    rho_x = -rcx
+    rho_y = -rcy
+    thdd = (a_x * rho_y - g_e * rho_x) / (i2 + b * b + h * h)
+    w2 = omega * omega
+    F = -thdd * rho_y - w2 * rho_x + a_x
+    N = thdd * rho_x - w2 * rho_y + g_e
+    return thdd, F, N
+
+
+@jit
+def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2, mu):
+    """One corner on the floor and slipping with sgn(V_cx) = sigma, PHYSICS 1.2 (4).
+
+    Returns (theta'', u'', N_c/m, D); D <= 0 is the Painleve condition.
+    """
+    rcx, rcy = corner(s, theta, b, h)
+    D = 1.0 + (rcx * rcx + mu * sigma * rcx * rcy) / i2
+    N = (g_e + omega * omega * rcy) / D
+    thdd = N * (rcx + mu * sigma * rcy) / i2
+    udd = -mu * sigma * N - a_x
+    return thdd, udd, N, D
+
+
+@jit
+def rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, out):
+    """Write dz/dt of the mode's compact state z into out."""
+    a_x, a_y = ground(t, par, rec)
+    g_e = G + a_y
+    if mode == SLIDE:                                  # (2): u' = -a_x - mu_k g_e sgn(u)
+        out[0] = z[1]
+        out[1] = -a_x - mu_k * g_e * ctx[CTX_SIGMA]
+    elif mode == ROTATION:
+        out[0] = z[1]
+        out[1] = rotation_dynamics(z[0], z[1], ctx[CTX_S], a_x, g_e, b, h, i2)[0]
+    elif mode == SLIDE_ROTATION:
+        thdd, udd, N, D = slide_rotation_dynamics(z[0], z[1], ctx[CTX_S], ctx[CTX_SIGMA],
+                                                  a_x, g_e, b, h, i2, mu_edge_k)
+        out[0] = z[1]
+        out[1] = thdd
+        out[2] = z[3]
+        out[3] = udd
+    elif mode == TRANSLATION_JUMP:                     # (5)
+        out[0] = z[2]
+        out[1] = z[3]
+        out[2] = -a_x
+        out[3] = -g_e
+    else:                                              # (6) rotation jump
+        out[0] = z[3]
+        out[1] = z[4]
+        out[2] = z[5]
+        out[3] = -a_x
+        out[4] = -g_e
+        out[5] = 0.0
+
+
+@jit
+def to_full(mode, z, ctx, b, h, q):
+    """Fill the full state q = (x, y, theta, u, v, omega) from the compact state z."""
+    if mode == REST:
+        q[IX] = ctx[CTX_X]
+        q[IY] = h
+        q[ITHETA] = 0.0
+        q[IU] = 0.0
+        q[IV] = 0.0
+        q[IOMEGA] = 0.0
+    elif mode == SLIDE:
+        q[IX] = z[0]
+        q[IY] = h
+        q[ITHETA] = 0.0
+        q[IU] = z[1]
+        q[IV] = 0.0
+        q[IOMEGA] = 0.0
+    elif mode == ROTATION or mode == SLIDE_ROTATION:
+        theta = z[0]
+        omega = z[1]
+        rcx, rcy = corner(ctx[CTX_S], theta, b, h)
+        q[ITHETA] = theta
+        q[IOMEGA] = omega
+        q[IY] = -rcy
+        q[IV] = -omega * rcx
+        if mode == ROTATION:
+            q[IX] = ctx[CTX_X] - rcx
+            q[IU] = omega * rcy
+        else:
+            q[IX] = z[2]
+            q[IU] = z[3]
+    elif mode == TRANSLATION_JUMP:
+        q[IX] = z[0]
+        q[IY] = z[1]
+        q[ITHETA] = 0.0
+        q[IU] = z[2]
+        q[IV] = z[3]
+        q[IOMEGA] = 0.0
+    else:
+        for k in range(6):
+            q[k] = z[k]
+
+
+@jit
+def from_full(mode, q, ctx, b, h, z):
+    """Pack the full state q into the compact state z of a mode (sets the pivot in ctx)."""
+    if mode == REST:
+        ctx[CTX_X] = q[IX]
+    elif mode == SLIDE:
+        z[0] = q[IX]
+        z[1] = q[IU]
+    elif mode == ROTATION or mode == SLIDE_ROTATION:
+        z[0] = q[ITHETA]
+        z[1] = q[IOMEGA]
+        if mode == ROTATION:
+            ctx[CTX_X] = q[IX] + corner(ctx[CTX_S], q[ITHETA], b, h)[0]
+        else:
+            z[2] = q[IX]
+            z[3] = q[IU]
+    elif mode == TRANSLATION_JUMP:
+        z[0] = q[IX]
+        z[1] = q[IY]
+        z[2] = q[IU]
+        z[3] = q[IV]
+    else:
+        for k in range(6):
+            z[k] = q[k]
+
+
+@jit
+def corner_velocity(q, s, b, h):
+    """Velocity (V_cx, V_cy) of corner s: V_c = (u - omega r_cy, v + omega r_cx)."""
+    rcx, rcy = corner(s, q[ITHETA], b, h)
+    return q[IU] - q[IOMEGA] * rcy, q[IV] + q[IOMEGA] * rcx
+
+
+@jit
+def kinetic_energy(q, i2):
+    """Kinetic energy per unit mass, relative to the floor."""
+    return 0.5 * (q[IU] * q[IU] + q[IV] * q[IV] + i2 * q[IOMEGA] * q[IOMEGA])

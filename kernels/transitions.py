@@ -1,0 +1,103 @@
+"""Which mode a body is in, given its state and the floor (PHYSICS.md section 1.3).
+
+``leave_rest`` is the table for a body whose face is on the floor without relative motion;
+``select_corner`` decides for a body touching the floor with one corner; ``select_face``
+decides with theta = 0 after an impact or a landing, including the Zeno closure of
+section 3.1.  Each returns (mode, s, sigma): the contact corner (-1 left, +1 right) and
+the slip direction sgn(V_cx), as the equations of motion need them.
+"""
+import math
+
+from ._jit import jit
+from .codes import REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP
+from .motion import IOMEGA, ITHETA, IU, IV, corner_velocity, rotation_dynamics, \
+    slide_rotation_dynamics
+
+
+@jit
+def mu_required(A, b, h, i2):
+    """Friction needed for pure rocking at onset, Shenton's mu_req(A) (PHYSICS 1.3)."""
+    return (A * (i2 + b * b) + b * h) / ((i2 + h * h) + A * b * h)
+
+
+@jit
+def leave_rest(a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_k):
+    """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b/h."""
+    if g_e <= 0.0:
+        return TRANSLATION_JUMP, 0.0, 0.0
+    A = abs(a_x) / g_e
+    beta = b / h
+    if A <= mu_s and A <= beta:
+        return REST, 0.0, 0.0
+    drive = math.copysign(1.0, a_x)
+    s = -drive                         # a_x > 0 tips the body about its left corner
+    if A > beta:
+        if mu_s >= mu_required(A, b, h, i2):
+            return ROTATION, s, 0.0
+        if mu_edge_k > beta:           # the pivot slips backwards relative to the floor
+            return SLIDE_ROTATION, s, -drive
+    if A > mu_s:
+        return start_slide(-drive, mu_k, b, h)
+    return REST, 0.0, 0.0
+
+
+@jit
+def start_slide(sigma, mu_k, b, h):
+    """Flat sliding with sgn(u) = sigma; with mu_k > b/h the body trips over its leading
+    corner instead (one normal force would turn negative, PHYSICS 1.2 (2))."""
+    if mu_k > b / h:
+        return SLIDE_ROTATION, sigma, sigma
+    return SLIDE, 0.0, sigma
+
+
+@jit
+def select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol):
+    """Mode of a body whose corner s touches the floor (gap 0)."""
+    Vx, Vy = corner_velocity(q, s, b, h)
+    if Vy > v_tol:
+        return ROTATION_JUMP, s, 0.0
+    if abs(Vx) > v_tol:
+        sigma = math.copysign(1.0, Vx)
+        N = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, g_e, b, h, i2,
+                                    mu_edge_k)[2]
+        if N <= 0.0:
+            return ROTATION_JUMP, s, 0.0
+        return SLIDE_ROTATION, s, sigma
+    thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)
+    if N <= 0.0:
+        return ROTATION_JUMP, s, 0.0
+    if abs(F) <= mu_edge_s * N:
+        return ROTATION, s, 0.0
+    return SLIDE_ROTATION, s, -math.copysign(1.0, F)
+
+
+@jit
+def select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol, zeno_dt):
+    """Mode after an impact or landing with theta = 0 (both corners at the floor).
+
+    Zeno closure (PHYSICS 3.1): a corner contact whose next impact would come within
+    zeno_dt (2|omega|/|theta''| with a restoring theta'') is closed to face contact.
+    A face contact sets q to it in place (omega = v = 0, u = the base's slip velocity).
+    """
+    omega = q[IOMEGA]
+    VL = corner_velocity(q, -1.0, b, h)[1]
+    VR = corner_velocity(q, 1.0, b, h)[1]
+    if VL > v_tol and VR > v_tol:
+        if abs(omega) > 0.0:
+            return ROTATION_JUMP, 0.0, 0.0
+        return TRANSLATION_JUMP, 0.0, 0.0
+    if omega != 0.0:
+        s = -1.0 if omega > 0.0 else 1.0          # omega > 0 lifts the right corner
+        thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, b, h, i2)[0]
+        restoring = thdd * omega < 0.0
+        if not (restoring and 2.0 * abs(omega) < zeno_dt * abs(thdd)):
+            return select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol)
+    # face contact: the remaining tangential velocity of the base decides
+    slip = corner_velocity(q, 1.0, b, h)[0]
+    q[IOMEGA] = 0.0
+    q[IV] = 0.0
+    if abs(slip) > v_tol:
+        q[IU] = slip
+        return start_slide(math.copysign(1.0, slip), mu_k, b, h)
+    q[IU] = 0.0
+    return leave_rest(a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_k)
