@@ -1,0 +1,235 @@
+"""Closed-form overturning criteria of Ishiyama (1982), Eqs. (1)-(21), in SI units.
+
+Every function takes the full breadth ``B`` and height ``H`` [m] of a rectangular body (b = B/2,
+h = H/2) and, where the paper uses it, the radius of gyration ``i_g`` about G [m]; ``i_g=None``
+means a uniform rectangle (i^2 = r^2/3).  Energies are per unit mass.  Inputs may be numpy arrays.
+Equation numbers are the paper's (``paper/ishiyama-overturning.md``); symbols as PHYSICS.md 1.1.
+"""
+from collections import namedtuple
+
+import numpy as np
+
+G = 9.80665  # standard gravity [m/s^2], the value kernels.ground uses
+V_FACTOR = 0.4  # Ishiyama's empirical lower limit of the normalized velocity (point P)
+
+BodyConstants = namedtuple("BodyConstants", "b h r alpha i2 p eta")
+BodyConstants.__doc__ = """Derived constants of a rectangular body (PHYSICS.md 1.1, 2.1).
+
+b, h : half-breadth, half-height [m]; r : corner-centroid distance [m]; alpha : slenderness
+angle atan(b/h) [rad]; i2 : i^2 [m^2]; p : frequency parameter sqrt(g r/(i^2 + r^2)) [1/s];
+eta : Housner's angular-velocity ratio per impact 1 - 2b^2/(i^2 + r^2) [-]."""
+
+IshiyamaLimits = namedtuple("IshiyamaLimits", "a_o v_o d_o T_c")
+IshiyamaLimits.__doc__ = """Lower limits a_o [m/s^2], v_o [m/s], d_o [m] and the period T_c [s]."""
+
+
+def _i2(B, H, i_g):
+    """Squared radius of gyration about G; uniform rectangle when ``i_g`` is None."""
+    if i_g is None:
+        return (np.square(B) + np.square(H)) / 12.0  # r^2/3 with r^2 = (B^2 + H^2)/4
+    return np.square(i_g)
+
+
+def body_constants(B, H, i_g=None, g=G):
+    """Constants b, h, r, alpha, i^2, p and Housner's eta of a rectangular body.
+
+    Parameters
+    ----------
+    B, H : float or ndarray
+        Full breadth and height [m].
+    i_g : float or ndarray, optional
+        Radius of gyration about G [m]; default uniform rectangle, i^2 = r^2/3.
+    g : float
+        Gravity [m/s^2].
+
+    Returns
+    -------
+    BodyConstants
+
+    References
+    ----------
+    PHYSICS.md 1.1 (notation) and 2.1 (eta).
+    """
+    b, h = 0.5 * np.asarray(B, float), 0.5 * np.asarray(H, float)
+    r2 = b * b + h * h
+    i2 = _i2(B, H, i_g)
+    return BodyConstants(b=b, h=h, r=np.sqrt(r2), alpha=np.arctan2(b, h), i2=i2,
+                         p=np.sqrt(g * np.sqrt(r2) / (i2 + r2)),
+                         eta=1.0 - 2.0 * b * b / (i2 + r2))
+
+
+def west_acceleration(B, H, g=G):
+    """West's acceleration to initiate rocking, a = (b/h) g, Eq. (1) [m/s^2]."""
+    return np.asarray(B, float) / np.asarray(H, float) * g
+
+
+def mononobe_coefficients(k_x, k_y):
+    """Mononobe's combined seismic coefficients K, K' = k_x/(1 -+ k_y), Eq. (2).
+
+    Parameters
+    ----------
+    k_x, k_y : float or ndarray
+        Horizontal and vertical seismic coefficients (accelerations / g).
+
+    Returns
+    -------
+    K, K_prime : float or ndarray
+        K with the vertical acceleration lowering the effective gravity to g(1 - k_y), K' with
+        it raising it to g(1 + k_y).  Rocking starts when the coefficient exceeds b/h.
+    """
+    k_x, k_y = np.asarray(k_x, float), np.asarray(k_y, float)
+    return k_x / (1.0 - k_y), k_x / (1.0 + k_y)
+
+
+def kirkpatrick_acceleration(B, H, t_1, i_g=None, g=G):
+    """Acceleration amplitude of a half-sine pulse of duration ``t_1`` that overturns, Eq. (3).
+
+    a = alpha g sqrt(1 + (i^2 + r^2)/(g r) (pi/t_1)^2) [m/s^2]; small-alpha (linearized) result.
+    """
+    c = body_constants(B, H, i_g, g)
+    return c.alpha * g * np.sqrt(1.0 + (np.pi / np.asarray(t_1, float) / c.p) ** 2)
+
+
+def housner_overturn_time(B, H, a, i_g=None, g=G):
+    """Duration t_o of a constant acceleration ``a`` that overturns the body, Eq. (4) [s].
+
+    cosh(p t_o) = 1 + 1/(2 x (x - 1)) with x = a/(g alpha) and p = sqrt(g r/(i^2 + r^2)): after the
+    acceleration stops the body still escapes (small-alpha, linearized).  The printed exponent
+    sqrt(g alpha/(i^2 + r^2)) has the dimension 1/sqrt(m s^2); p is the form the derivation
+    gives and agrees with PHYSICS.md A8.  NaN when a <= g alpha (the body never overturns).
+    """
+    c = body_constants(B, H, i_g, g)
+    x = np.asarray(a, float) / (g * c.alpha)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(x > 1.0, np.arccosh(1.0 + 1.0 / (2.0 * x * (x - 1.0))) / c.p, np.nan)
+
+
+def potential_energy(B, H, g=G):
+    """Energy per unit mass to lift G over the base edge, g r (1 - cos alpha), Eq. (5) [J/kg]."""
+    c = body_constants(B, H, None, g)
+    return g * c.r * (1.0 - np.cos(c.alpha))
+
+
+def kinetic_energy(B, H, omega, i_g=None):
+    """Kinetic energy per unit mass about a base edge, (i^2 + r^2) omega^2/2, Eq. (6) [J/kg]."""
+    c = body_constants(B, H, i_g)
+    return 0.5 * (c.i2 + c.r ** 2) * np.square(omega)
+
+
+def overturning_angular_velocity(B, H, i_g=None, g=G):
+    """Angular velocity about a base edge that just lifts G over it, Eq. (7) [rad/s]."""
+    c = body_constants(B, H, i_g, g)
+    return np.sqrt(2.0 * g * c.r * (1.0 - np.cos(c.alpha)) / (c.i2 + c.r ** 2))
+
+
+def shock_angular_velocity(B, H, v, i_g=None):
+    """Angular velocity after a translation at ``v`` is stopped at a base edge, Eq. (8) [rad/s].
+
+    Angular momentum about the edge is conserved: v h = (i^2 + r^2) omega.
+    """
+    c = body_constants(B, H, i_g)
+    return np.asarray(v, float) * c.h / (c.i2 + c.r ** 2)
+
+
+def single_shock_velocity(B, H, i_g=None, g=G):
+    """Velocity v_H of a single horizontal shock that overturns the body, Eqs. (9)/(10) [m/s].
+
+    v_H^2 = (2g/r)(i^2 + r^2)(1 - cos alpha)/cos^2 alpha; with ``i_g=None`` (i^2 + r^2 = 4r^2/3)
+    this is Eq. (10).  It is the unit of the normalized velocity (the ``v_H`` unit of scene files).
+    """
+    c = body_constants(B, H, i_g, g)
+    cos_a = np.cos(c.alpha)
+    return np.sqrt(2.0 * g / c.r * (c.i2 + c.r ** 2) * (1.0 - cos_a) / cos_a ** 2)
+
+
+def single_shock_velocity_small_angle(B, H, g=G):
+    """Small-alpha form of Eq. (10) for a uniform rectangle, v^2 = 4 g b alpha/3, Eq. (11) [m/s]."""
+    c = body_constants(B, H, None, g)
+    return np.sqrt(4.0 * g * c.b * c.alpha / 3.0)
+
+
+def omori_displacement(B, H, i_g=None):
+    """Omori's floor displacement 2d (twice the amplitude) that overturns, Eqs. (12)/(13) [m].
+
+    2d = b (i^2 + r^2)/h^2; for a uniform rectangle (``i_g=None``) 4 r^2 b/(3 h^2), which is
+    Eq. (13) with the h^2 that Eq. (12) gives (the transcription prints h, which would make 2d an
+    area).  The paper notes that the formula has not been verified.
+    """
+    c = body_constants(B, H, i_g)
+    return c.b * (c.i2 + c.r ** 2) / c.h ** 2
+
+
+def ishiyama_acceleration(B, H, g=G):
+    """Lower limit a_o = (B/H) g of the peak floor acceleration to overturn, Eq. (14) [m/s^2]."""
+    return west_acceleration(B, H, g)
+
+
+def ishiyama_velocity(B, H, i_g=None, g=G):
+    """Lower limit v_o = 0.4 v_H of the peak floor velocity to overturn, Eqs. (15)/(16) [m/s]."""
+    return V_FACTOR * single_shock_velocity(B, H, i_g, g)
+
+
+def ishiyama_velocity_approx(B, H):
+    """Slender-body rule v_o ~ 10 B/sqrt(H) [cm/s with B, H in cm], Eq. (17); returned in m/s.
+
+    In SI the rule reads v_o = B/sqrt(H) (B, H in m, v_o in m/s).
+    """
+    B_cm, H_cm = 100.0 * np.asarray(B, float), 100.0 * np.asarray(H, float)
+    return 0.01 * 10.0 * B_cm / np.sqrt(H_cm)
+
+
+def ishiyama_displacement(B, H, i_g=None, g=G):
+    """Lower limit d_o = v_o^2/a_o of the peak floor displacement to overturn, Eq. (18) [m]."""
+    return ishiyama_velocity(B, H, i_g, g) ** 2 / ishiyama_acceleration(B, H, g)
+
+
+def ishiyama_displacement_approx(B):
+    """Slender-body rule d_o ~ B/10, Eq. (19) [m]."""
+    return np.asarray(B, float) / 10.0
+
+
+def critical_period(B, H, i_g=None, g=G):
+    """Period T_c = 2 pi v_o/a_o at point P of the normalized plane, Eq. (20) [s].
+
+    The paper prints T_c = 2 pi a_o/v_o = 2 pi v_o/d_o, which has the dimension of a frequency
+    (PHYSICS.md A11).  The period at which a sinusoid of acceleration amplitude a_o has velocity
+    amplitude v_o is 2 pi v_o/a_o = 2 pi d_o/v_o, and that is what is returned.
+    """
+    return 2.0 * np.pi * ishiyama_velocity(B, H, i_g, g) / ishiyama_acceleration(B, H, g)
+
+
+def critical_period_approx(H):
+    """Slender-body rule T_c ~ sqrt(H)/16 [s with H in cm], Eq. (21); returned in s for H in m.
+
+    The transcription of the paper reads sqrt(H/16); the small-alpha limit of Eq. (20),
+    T_c = 0.8 pi sqrt(2H/(3g)) = 0.0655 sqrt(H) [cm, s], shows the intended form is sqrt(H)/16.
+    """
+    return np.sqrt(100.0 * np.asarray(H, float)) / 16.0
+
+
+def ishiyama_limits(B, H, i_g=None, g=G):
+    """The lower limits a_o, v_o, d_o and the period T_c of Eqs. (14), (15), (18), (20)."""
+    a_o = ishiyama_acceleration(B, H, g)
+    v_o = ishiyama_velocity(B, H, i_g, g)
+    return IshiyamaLimits(a_o=a_o, v_o=v_o, d_o=v_o ** 2 / a_o, T_c=2.0 * np.pi * v_o / a_o)
+
+
+def normalized_plane(A, f, B, H, i_g=None, g=G):
+    """Coordinates of a sinusoid in the paper's plane (Figs. 6-11).
+
+    Parameters
+    ----------
+    A : float or ndarray
+        Acceleration amplitude [m/s^2].
+    f : float or ndarray
+        Frequency [Hz].
+
+    Returns
+    -------
+    x, y : float or ndarray
+        Normalized acceleration A/((b/h) g) and normalized velocity (A/(2 pi f))/v_H; Ishiyama's
+        point P is (1, 0.4).
+    """
+    A = np.asarray(A, float)
+    return (A / west_acceleration(B, H, g),
+            A / (2.0 * np.pi * np.asarray(f, float)) / single_shock_velocity(B, H, i_g, g))

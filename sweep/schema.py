@@ -1,0 +1,452 @@
+"""Scene files (DESIGN.md section 4): validation into pydantic models, and resolution into SI.
+
+``load_scene`` reads a YAML file (or takes a dict), checks it and reports every problem at
+once as :class:`~sweep.yamlio.FileProblems` with dotted paths; ``resolve_scene`` turns the
+checked scene into the resolved SI dict of ``kernels/api.py`` (units and body-relative units
+resolved with the scene's own body, records loaded, defaults of ``kernels.api.DEFAULTS`` filled
+in).  ``apply_overrides`` sets values by dotted path in a raw dict before validation, which is
+how a study gives each cell its values.
+"""
+import copy
+import difflib
+import math
+from pathlib import Path
+from typing import Annotated, Literal, Optional, Union
+
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, PlainValidator,
+                      ValidationError, ValidationInfo, field_validator, model_validator)
+
+from kernels.api import DEFAULTS
+
+from . import records, units
+from .units import Quantity
+from .yamlio import MISSING, FileProblems, Problem, join_path, parse_yaml, read_text
+
+T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
+KINDS = ("none", "sine", "sweep", "record", "pulse")
+HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
+                   "displacement": "length"}
+
+
+class _FieldError(ValueError):
+    """A cross-field check that blames one ``field`` of the model it runs in."""
+
+    def __init__(self, field, value, message):
+        super().__init__(message)
+        self.field, self.value = field, value
+
+
+def _quantity(*dimensions, gt=None, ge=None):
+    """Annotated type: a :class:`Quantity` of ``dimensions`` with an optional sign check."""
+    def check(q):
+        # every unit factor is positive, so the sign of the value is the sign in SI
+        if gt is not None and not q.value > gt:
+            raise ValueError(f"must be greater than {gt}")
+        if ge is not None and not q.value >= ge:
+            raise ValueError(f"must be greater than or equal to {ge}")
+        return q
+    return Annotated[Quantity, PlainValidator(lambda v: units.parse_quantity(v, dimensions)),
+                     AfterValidator(check)]
+
+
+Length = _quantity("length", gt=0)
+Instant = _quantity("time", ge=0)
+Duration = _quantity("time", gt=0)
+Frequency = _quantity("frequency", gt=0)
+Angle = _quantity("angle")
+Acceleration = _quantity("acceleration")
+Coefficient = Annotated[float, Field(ge=0)]
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _empty_section(cls, data):
+        """A section written with nothing under it (``contact:``) is an empty mapping."""
+        return {} if data is None else data
+
+
+class Body(_Model):
+    """Full breadth ``B`` and height ``H``; ``i_g`` radius of gyration about G (default uniform)."""
+
+    B: Length
+    H: Length
+    i_g: Optional[Length] = None
+
+
+class Contact(_Model):
+    """Friction and restitution; ``mu`` sets all four friction coefficients, explicit ones win."""
+
+    mu: Optional[Coefficient] = None
+    mu_s: Optional[Coefficient] = None
+    mu_k: Optional[Coefficient] = None
+    mu_edge_s: Optional[Coefficient] = None
+    mu_edge_k: Optional[Coefficient] = None
+    e_x: Optional[Annotated[float, Field(ge=-1, le=1)]] = None
+    e_y: Optional[Annotated[float, Field(ge=0, le=1)]] = None
+
+
+class _Ground(_Model):
+    """A floor-motion component; the floor is still outside [start, start + duration)."""
+
+    start: Optional[Instant] = None
+    duration: Optional[Duration] = None
+
+
+class NoMotion(_Model):
+    kind: Literal["none"]
+
+
+class SineMotion(_Ground):
+    """Amplitude as acceleration, velocity or displacement (converted with omega = 2 pi f)."""
+
+    kind: Literal["sine"]
+    amplitude: _quantity("acceleration", "velocity", "length")
+    frequency: Frequency
+    phase: Optional[Angle] = None
+
+
+class SweepMotion(_Ground):
+    """Frequency sweep keeping the amplitude named by ``hold`` constant; ``duration`` = length."""
+
+    kind: Literal["sweep"]
+    hold: Literal["acceleration", "velocity", "displacement"] = DEFAULTS["ground"]["hold"]
+    amplitude: Quantity
+    f_start: Frequency
+    f_stop: Frequency
+    duration: Duration
+    law: Optional[Literal["log", "linear"]] = None
+    phase: Optional[Angle] = None
+
+    @field_validator("amplitude", mode="plain")
+    @classmethod
+    def _amplitude_of_hold(cls, value, info: ValidationInfo):
+        hold = info.data.get("hold")
+        if hold is None:  # hold itself is wrong and reported; still check the amplitude
+            return units.parse_quantity(value, tuple(HOLD_DIMENSIONS.values()))
+        try:
+            return units.parse_quantity(value, HOLD_DIMENSIONS[hold])
+        except ValueError as err:
+            raise ValueError(f"{err} (hold: {hold})") from None
+
+
+class RecordMotion(_Ground):
+    """A bundled record (``name``) or a user's file (``path``), scaled by ``scale`` or to ``pga``.
+
+    ``units`` is the acceleration unit of a two-column file (default m/s^2); ``.AT2`` files are
+    in g.  A relative ``path`` is taken from the scene file's folder.
+    """
+
+    kind: Literal["record"]
+    name: Optional[str] = None
+    units: Optional[str] = None
+    path: Optional[str] = None
+    scale: Optional[float] = None
+    pga: Optional[_quantity("acceleration", gt=0)] = None
+
+    @field_validator("name")
+    @classmethod
+    def _known_name(cls, name):
+        if name is not None and name not in records.NAMES:
+            raise ValueError(f"unknown record; bundled records: {', '.join(records.NAMES)}")
+        return name
+
+    @field_validator("units")
+    @classmethod
+    def _acceleration_unit(cls, unit):
+        if unit is not None:
+            units.fixed_factor(unit, "acceleration")
+        return unit
+
+    @field_validator("path")
+    @classmethod
+    def _readable(cls, path, info: ValidationInfo):
+        if path is None:
+            return None
+        base = Path((info.context or {}).get("base_dir") or ".")
+        full = (base / Path(path).expanduser()).resolve()
+        try:
+            records.read_record_file(full, info.data.get("units"))
+        except records.RecordError as err:
+            raise ValueError(str(err)) from None
+        return str(full)
+
+    @model_validator(mode="after")
+    def _one_source_one_scale(self):
+        if self.name is None and self.path is None:
+            raise _FieldError("name", MISSING,
+                              "required: name (a bundled record) or path (a file)")
+        if self.name is not None and self.path is not None:
+            raise _FieldError("path", self.path, "give either name or path, not both")
+        if self.units is not None and self.path is None:
+            raise _FieldError("units", self.units, "units apply to a path: file only")
+        if self.scale is not None and self.pga is not None:
+            raise _FieldError("pga", str(self.pga), "give either scale or pga, not both")
+        return self
+
+
+class PulseMotion(_Ground):
+    """Rectangular or triangular acceleration pulse of length ``duration``."""
+
+    kind: Literal["pulse"]
+    shape: Literal["rectangular", "triangular"]
+    amplitude: Acceleration
+    duration: Duration
+
+
+Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion],
+                   Field(discriminator="kind")]
+
+
+class Excitation(_Model):
+    horizontal: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
+    vertical: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
+
+    @field_validator("horizontal", "vertical", mode="before")
+    @classmethod
+    def _none_shorthand(cls, value):
+        """``vertical: none`` or an empty entry means no motion."""
+        return {"kind": "none"} if value is None or value == "none" else value
+
+
+class Initial(_Model):
+    """Initial state: tilt, angular velocity, velocities of G and lift of the base [SI]."""
+
+    theta: Optional[Angle] = None
+    omega: Optional[_quantity("angular_velocity")] = None
+    x_dot: Optional[_quantity("velocity")] = None
+    y_dot: Optional[_quantity("velocity")] = None
+    lift: Optional[_quantity("length", ge=0)] = None
+
+
+class Solver(_Model):
+    """Integrator and guards (PHYSICS.md 3); ``t_end`` defaults from the excitation."""
+
+    method: Optional[Literal["adaptive", "fixed"]] = None
+    rtol: Optional[Annotated[float, Field(gt=0)]] = None
+    atol: Optional[Annotated[float, Field(gt=0)]] = None
+    dt: Optional[Duration] = None
+    max_step: Optional[Duration] = None
+    t_end: Optional[Duration] = None
+    max_steps: Optional[Annotated[int, Field(gt=0)]] = None
+    max_events: Optional[Annotated[int, Field(gt=0)]] = None
+    theta_overturn: Optional[_quantity("angle", gt=0)] = None
+    zeno_dt: Optional[Duration] = None
+    dt_out: Optional[Duration] = None
+
+
+class Scene(_Model):
+    """A scene file (DESIGN.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
+
+    body: Body
+    contact: Contact = Field(default_factory=Contact)
+    excitation: Excitation = Field(default_factory=Excitation)
+    initial: Initial = Field(default_factory=Initial)
+    solver: Solver = Field(default_factory=Solver)
+
+
+# --- errors -----------------------------------------------------------------------------------
+
+_MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
+           PulseMotion, Initial, Solver)
+_FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
+
+
+def _dotted(loc):
+    """Dotted path of a pydantic location, without the union tag pydantic inserts after a
+    ground component (``excitation.horizontal.sine.amplitude`` -> ``...horizontal.amplitude``)."""
+    path = ""
+    for i, key in enumerate(loc):
+        if i >= 2 and loc[i - 1] in ("horizontal", "vertical") and key in KINDS:
+            continue
+        path = join_path(path, key)
+    return path
+
+
+def _problem(error):
+    """A :class:`Problem` from one pydantic error dict."""
+    path, value, kind = _dotted(error["loc"]), error.get("input", MISSING), error["type"]
+    message = error["msg"].removeprefix("Value error, ").replace("Input should be", "must be")
+    cause = (error.get("ctx") or {}).get("error")
+    if isinstance(cause, _FieldError):
+        return Problem(join_path(path, cause.field), cause.value, str(cause))
+    if kind == "missing":
+        return Problem(path, MISSING, "required")
+    if kind == "extra_forbidden":
+        key = str(error["loc"][-1])
+        close = difflib.get_close_matches(key, _FIELD_NAMES, n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        return Problem(path, value, f"unknown key{hint}")
+    if kind in ("union_tag_not_found", "union_tag_invalid"):
+        tag = value.get("kind", MISSING) if isinstance(value, dict) else value
+        return Problem(join_path(path, "kind"), tag,
+                       "required" if tag is MISSING else
+                       f"unknown kind; expected one of: {', '.join(KINDS)}")
+    return Problem(path, value, message)
+
+
+def load_scene(source, *, base_dir=None):
+    """Read and check a scene; every problem is reported at once.
+
+    Parameters
+    ----------
+    source : str, Path or dict
+        A YAML file, or a dict of the same schema (e.g. after :func:`apply_overrides`).
+    base_dir : str or Path, optional
+        Folder that relative record paths start from; default the file's folder (or the
+        working directory for a dict).
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    FileProblems
+        Every syntax error, duplicate key, unknown key, missing value, wrong unit or value out
+        of range, each with its dotted path and the value given.
+    """
+    if isinstance(source, dict):
+        raw, problems, name = source, [], None
+    else:
+        name = source
+        raw, problems = parse_yaml(read_text(source))
+        base_dir = Path(source).parent if base_dir is None else base_dir
+    if raw is None and not problems:
+        problems.append(Problem("(file)", MISSING, "the scene is empty"))
+    elif raw is not None and not isinstance(raw, dict):
+        problems.append(Problem("(file)", raw, "a scene must be a mapping of body, contact, ..."))
+    elif raw is not None:
+        try:
+            scene = Scene.model_validate(raw, context={"base_dir": base_dir})
+        except ValidationError as err:
+            problems += [_problem(e) for e in err.errors(include_url=False)]
+    if problems:
+        raise FileProblems(problems, name)
+    return scene
+
+
+def apply_overrides(raw, overrides):
+    """A copy of the raw scene dict with values set by dotted path, before validation.
+
+    ``apply_overrides(raw, {"excitation.horizontal.amplitude": "1.2 west", "body.H": 0.4})``.
+    Missing intermediate mappings are created; the values are raw (numbers or unit strings), so
+    that :func:`load_scene` checks them like values written in the file.  Note that the ``mu``
+    shorthand loses to explicit ``mu_s`` ... keys: a study axis on ``mu`` must not meet them.
+
+    Raises
+    ------
+    FileProblems
+        When a path goes through a value that is not a mapping.
+    """
+    new = copy.deepcopy(raw)
+    problems = []
+    for dotted, value in overrides.items():
+        keys = dotted.split(".")
+        node = new
+        for i, key in enumerate(keys[:-1]):
+            if node.get(key) is None:  # absent, or a section left empty in the file
+                node[key] = {}
+            child = node[key]
+            if not isinstance(child, dict):
+                problems.append(Problem(".".join(keys[:i + 1]), child,
+                                        f"cannot set '{dotted}': not a mapping"))
+                break
+            node = child
+        else:
+            node[keys[-1]] = copy.deepcopy(value)
+    if problems:
+        raise FileProblems(problems)
+    return new
+
+
+# --- resolution into SI -----------------------------------------------------------------------
+
+def _si(quantity, default, body=None):
+    return default if quantity is None else quantity.to_si(body)
+
+
+def _ground(g, body):
+    """Resolved SI dict of one ground component (kernels/api.py docstring)."""
+    if g.kind == "none":
+        return {"kind": "none"}
+    defaults = DEFAULTS["ground"]
+    out = {"kind": g.kind, "start": _si(g.start, defaults["start"]),
+           "duration": _si(g.duration, defaults["duration"])}
+    if g.kind == "sine":
+        frequency = g.frequency.to_si()
+        out.update(amplitude=units.acceleration_amplitude(g.amplitude, frequency, body),
+                   frequency=frequency, phase=_si(g.phase, defaults["phase"], body))
+    elif g.kind == "sweep":
+        out.update(hold=g.hold, amplitude=g.amplitude.to_si(body), f_start=g.f_start.to_si(),
+                   f_stop=g.f_stop.to_si(), law=g.law or defaults["law"],
+                   phase=_si(g.phase, defaults["phase"], body))
+    elif g.kind == "pulse":
+        out.update(shape=g.shape, amplitude=g.amplitude.to_si(body))
+    else:
+        rec = (records.load_record(g.name) if g.name is not None
+               else records.read_record_file(g.path, g.units))
+        scale = (g.pga.to_si(body) / rec.pga if g.pga is not None
+                 else defaults["scale"] if g.scale is None else g.scale)
+        out.update(samples=rec.samples, dt=rec.dt, scale=scale)
+    return out
+
+
+def _end(ground):
+    """Time at which a resolved component stops moving the floor: inf never, None no motion."""
+    if ground["kind"] == "none":
+        return None
+    length = math.inf if ground["duration"] is None else ground["duration"]
+    if ground["kind"] == "record":
+        length = min(length, ground["dt"] * len(ground["samples"]))
+    return ground["start"] + length
+
+
+def resolve_scene(scene):
+    """The resolved SI scene dict of ``kernels/api.py`` for a checked scene.
+
+    Parameters
+    ----------
+    scene : Scene, or anything :func:`load_scene` takes
+
+    Returns
+    -------
+    dict
+        ``body``, ``contact`` (all six coefficients), ``excitation`` (``horizontal``,
+        ``vertical``), ``initial`` and ``solver`` (all keys), in m, s, rad, Hz.  Sine amplitudes
+        are acceleration amplitudes; a sweep's amplitude is in the SI unit of its ``hold``;
+        a record has ``samples`` [m/s^2, read-only], ``dt`` and ``scale`` (from ``pga`` if
+        given).  Without ``solver.t_end``: the end of the excitation + 5 s when every component
+        ends, else ``DEFAULTS["solver"]["t_end"]``.
+    """
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    b = scene.body
+    body = {"B": b.B.to_si(), "H": b.H.to_si(), "i_g": _si(b.i_g, DEFAULTS["body"]["i_g"])}
+
+    contact = dict(DEFAULTS["contact"])
+    for key in contact:
+        if getattr(scene.contact, key) is not None:
+            contact[key] = getattr(scene.contact, key)
+        elif key.startswith("mu") and scene.contact.mu is not None:
+            contact[key] = scene.contact.mu
+
+    excitation = {"horizontal": _ground(scene.excitation.horizontal, body),
+                  "vertical": _ground(scene.excitation.vertical, body)}
+
+    initial = {key: _si(getattr(scene.initial, key), default, body)
+               for key, default in DEFAULTS["initial"].items()}
+
+    solver = dict(DEFAULTS["solver"])
+    for key in solver:
+        value = getattr(scene.solver, key)
+        if value is not None:
+            solver[key] = value.to_si(body) if isinstance(value, Quantity) else value
+    if scene.solver.t_end is None:
+        ends = [e for e in map(_end, excitation.values()) if e is not None]
+        if ends and all(math.isfinite(e) for e in ends):
+            solver["t_end"] = max(ends) + T_TAIL
+    return {"body": body, "contact": contact, "excitation": excitation, "initial": initial,
+            "solver": solver}

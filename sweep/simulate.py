@@ -1,0 +1,34 @@
+"""One scene from Python: ``simulate(scene)`` takes a file path or a dict of the scene schema.
+
+The result carries the JSON fields of DESIGN.md section 4 as attributes and, when asked, the
+history as an xarray Dataset (``history_dataset``).
+"""
+from .schema import load_scene, resolve_scene
+
+JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
+             "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
+             "steps", "cpu_s")
+
+
+def simulate(scene, history=False):
+    """Run one scene (path or dict, units as in scene files) and return a ``SceneResult``.
+
+    With ``history=True`` the result's ``history`` is an ``xarray.Dataset`` sampled every
+    ``solver.dt_out`` seconds.
+    """
+    from kernels import run_scene
+    resolved = resolve_scene(load_scene(scene))
+    result = run_scene(resolved, history=history)
+    if history:
+        from .history import history_dataset
+        result = result._replace(history=history_dataset(result.history, resolved))
+    return result
+
+
+def to_json_dict(result):
+    """The JSON contract of DESIGN.md section 4 (plus the end status message)."""
+    out = {key: getattr(result, key) for key in JSON_KEYS}
+    out["message"] = result.message
+    out["impact_slipped"] = result.impact_slipped
+    out["energy_clamps"] = result.energy_clamps
+    return out
