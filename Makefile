@@ -8,7 +8,7 @@ KERNEL_HASH := $(shell cat kernels/*.py | sha1sum | cut -c1-12)
 export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache/$(KERNEL_HASH)
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: install run test test-nojit validate bench figures clean
+.PHONY: install run scenes test test-nojit validate bench figures clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
@@ -21,6 +21,11 @@ install: $(STAMP)
 run: $(STAMP)
 	mkdir -p out
 	$(PY) -m sweep.scene studies/steady_rocking.yaml --json --plot out/steady_rocking.png
+
+scenes: $(STAMP)
+	mkdir -p figures/scenes
+	for f in studies/fig0[345]*.yaml; do \
+	  $(PY) -m sweep.scene $$f --plot figures/scenes/$$(basename $$f .yaml).png || exit 1; done
 
 test: $(STAMP)
 	$(PY) -m pytest -m "not slow" -q
