@@ -87,9 +87,10 @@ def rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, out):
     if mode == SLIDE:                                  # (2): u' = -a_x - mu_k g_e sgn(u)
         out[0] = z[1]
         out[1] = -a_x - mu_k * g_e * ctx[CTX_SIGMA]
-    elif mode == ROTATION:
+    elif mode == ROTATION:                             # (3), theta'' only
+        rcx, rcy = corner(ctx[CTX_S], z[0], b, h)
         out[0] = z[1]
-        out[1] = rotation_dynamics(z[0], z[1], ctx[CTX_S], a_x, g_e, b, h, i2)[0]
+        out[1] = (g_e * rcx - a_x * rcy) / (i2 + b * b + h * h)
     elif mode == SLIDE_ROTATION:
         thdd, udd, N, D = slide_rotation_dynamics(z[0], z[1], ctx[CTX_S], ctx[CTX_SIGMA],
                                                   a_x, g_e, b, h, i2, mu_edge_k)
