@@ -83,6 +83,20 @@ def _initial(par, rec, body, contact, q, v_tol):
 
 
 @jit
+def _face_landing(mode, s, sigma, q, a_x, g_e, body, contact, v_tol, zeno_dt):
+    """Impact with the face flat (theta = 0) and the mode after it (see ``_handle``)."""
+    b, h, i2, mu_k, mu_edge_k = body
+    mu_s, mu_edge_s, e_x, e_y = contact[0], contact[2], contact[4], contact[5]
+    q[IY] = h
+    flags = face_impact(q, e_x, e_y, mu_s, mu_k, mu_edge_s, mu_edge_k, b, h, i2)
+    if flags & IMPACT_PAINLEVE:
+        return mode, s, sigma, PAINLEVE, flags
+    m, s2, sg2 = select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol,
+                             zeno_dt)
+    return m, s2, sg2, OK, flags
+
+
+@jit
 def _handle(k, mode, t, q, ctx, par, rec, body, contact, v_tol, zeno_dt):
     """Apply event k of the mode at time t to q: (mode, s, sigma, status, impact flags).
 
@@ -108,15 +122,8 @@ def _handle(k, mode, t, q, ctx, par, rec, body, contact, v_tol, zeno_dt):
             q[IU] = q[IOMEGA] * corner(s, q[ITHETA], b, h)[1]
             m, s2, sg2 = select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol)
             return m, s2, sg2, OK, -1
-        # EV_IMPACT: theta = 0, the other corner strikes (PHYSICS 2.1-2.3)
-        q[ITHETA] = 0.0
-        q[IY] = h
-        flags = face_impact(q, e_x, e_y, mu_s, mu_k, mu_edge_s, mu_edge_k, b, h, i2)
-        if flags & IMPACT_PAINLEVE:
-            return mode, s, sigma, PAINLEVE, flags
-        m, s2, sg2 = select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k,
-                                 v_tol, zeno_dt)
-        return m, s2, sg2, OK, flags
+        q[ITHETA] = 0.0               # EV_IMPACT: the other corner strikes (PHYSICS 2.1-2.3)
+        return _face_landing(mode, s, sigma, q, a_x, g_e, body, contact, v_tol, zeno_dt)
     if mode == SLIDE:
         if k == EV_STOP:
             q[IU] = 0.0
@@ -125,13 +132,7 @@ def _handle(k, mode, t, q, ctx, par, rec, body, contact, v_tol, zeno_dt):
         q[IV] = 0.0                                     # EV_FREE_FALL: g_e reached 0
         return TRANSLATION_JUMP, 0.0, 0.0, OK, -1
     if mode == TRANSLATION_JUMP:                        # flat landing
-        q[IY] = h
-        flags = face_impact(q, e_x, e_y, mu_s, mu_k, mu_edge_s, mu_edge_k, b, h, i2)
-        if flags & IMPACT_PAINLEVE:
-            return mode, s, sigma, PAINLEVE, flags
-        m, s2, sg2 = select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k,
-                                 v_tol, zeno_dt)
-        return m, s2, sg2, OK, flags
+        return _face_landing(mode, s, sigma, q, a_x, g_e, body, contact, v_tol, zeno_dt)
     # rotation jump
     if k == EV_JUMP_OVERTURN:
         return mode, s, sigma, OVERTURNED, -1
