@@ -18,6 +18,7 @@ from .motion import IOMEGA, IU, IV, ITHETA, corner, corner_velocity, kinetic_ene
 SLIPPED = 1          # flag bits returned by the impact functions
 CLAMPED = 2
 IMPACT_PAINLEVE = 4
+SEQUENTIAL_IMPACTS = 50  # at most this many alternating corner impacts in one face impact
 
 
 @jit
@@ -159,5 +160,16 @@ def face_impact(q, e_x, e_y, mu_s, mu_k, mu_edge_s, mu_edge_k, b, h, i2):
         if kinetic_energy(q, i2) <= ke * (1.0 + 1e-12):
             return flags
         _restore(q, u, v, omega)
-    s = -1.0 if v - omega * b < v + omega * b else 1.0     # the corner striking harder
-    return corner_impact(q, s, e_x, e_y, mu_edge_s, mu_edge_k, b, h, i2)
+    # Only the corner striking harder takes the impulse.  If that drives the other corner
+    # into the floor (a squat block, restitution), the other corner is struck in turn, and so
+    # on: a sequence of single-corner impacts, each dissipative, until neither approaches.
+    s = -1.0 if v - omega * b < v + omega * b else 1.0
+    flags = 0
+    for _ in range(SEQUENTIAL_IMPACTS):
+        flags |= corner_impact(q, s, e_x, e_y, mu_edge_s, mu_edge_k, b, h, i2)
+        if flags & IMPACT_PAINLEVE:
+            return flags
+        s = -s
+        if corner_velocity(q, s, b, h)[1] >= -1e-12 * (abs(q[IV]) + b * abs(q[IOMEGA])):
+            return flags
+    return flags | CLAMPED
