@@ -19,8 +19,10 @@ $(STAMP): pyproject.toml
 install: $(STAMP)
 
 run: $(STAMP)
-	mkdir -p out
-	$(PY) -m sweep.scene studies/steady_rocking.yaml --json --plot out/steady_rocking.png
+	mkdir -p figures
+	$(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.run studies/smoke.yaml --force
+	$(PY) -m sweep.plot results/smoke.nc --figure map -o figures/smoke_map.png
+	@echo "wrote results/smoke.nc and figures/smoke_map.png"
 
 scenes: $(STAMP)
 	mkdir -p figures/scenes

@@ -1,0 +1,176 @@
+"""The study dataset (DESIGN.md section 6): one metadata table, the Dataset builder, encoding.
+
+``VARIABLES`` is the single description of every per-cell result: dtype, CF ``units`` and
+``long_name``, flags for integer codes (from ``kernels.codes``) and any extra dimension.
+``cells.run_chunk`` fills arrays of these dtypes; :func:`to_dataset` shapes them onto the
+study's dimensions; :func:`encoding` chooses how they are stored (zlib level 1, no
+``_FillValue`` on integer flags and coordinates).  xarray is imported only when a Dataset is
+built.
+"""
+import datetime
+from collections import namedtuple
+
+import numpy as np
+
+from kernels import codes
+
+from . import __version__
+
+CONVENTIONS = "CF-1.11"
+PACKAGE = "rigid-block-sweeps"
+COMPLEVEL = 1  # zlib level 1: most of the gain of compression at a fraction of its time
+
+Variable = namedtuple("Variable", "dtype units long_name flags dims comment")
+Variable.__new__.__defaults__ = (None, (), "")
+Variable.__doc__ = """One result per cell: numpy ``dtype``, CF ``units`` and ``long_name``,
+``flags`` = (values, meanings) for integer codes, extra trailing ``dims``, ``comment``."""
+
+OUTCOME_FLAGS = ((codes.FAILED, codes.NO_ROCKING, codes.ROCKED, codes.OVERTURN),
+                 codes.OUTCOME_NAMES)
+STATUS_FLAGS = (tuple(range(len(codes.STATUS_NAMES))), codes.STATUS_NAMES)
+OVERTURNED_FLAGS = ((-1, 0, 1), ("failed", "standing", "overturned"))
+DIRECTION_FLAGS = ((-1, 0, 1), ("negative_theta", "none", "positive_theta"))
+
+VARIABLES = {
+    "outcome": Variable("int8", "1", "outcome of the cell", OUTCOME_FLAGS,
+                        comment="failed: the scene ended with a failed status; rocked: "
+                                "max_abs_theta > 0 without overturning"),
+    "overturned": Variable("int8", "1", "body overturned", OVERTURNED_FLAGS),
+    "status": Variable("int8", "1", "end status of the simulation", STATUS_FLAGS,
+                       comment="; ".join(f"{n}: {m}" for n, m in
+                                         zip(codes.STATUS_NAMES, codes.STATUS_MESSAGES))),
+    "t_overturn": Variable("float64", "s", "time of overturning",
+                           comment="NaN if the body did not overturn"),
+    "overturn_direction": Variable("int8", "1", "sign of theta at overturning",
+                                   DIRECTION_FLAGS,
+                                   comment="theta > 0 is rotation about the left corner"),
+    "max_abs_theta": Variable("float64", "rad", "largest absolute rotation angle"),
+    "impact_count": Variable("int32", "1", "number of impacts"),
+    "mode_time": Variable("float32", "s", "time spent in each motion type", dims=("mode",)),
+    "max_slip": Variable("float32", "m", "largest slip of G relative to the floor"),
+    "max_lift": Variable("float32", "m", "largest gap under the lowest point of the body"),
+    "t_rest": Variable("float64", "s", "time of coming to final rest",
+                       comment="NaN if the body did not come to final rest"),
+    "steps": Variable("int32", "1", "integration steps taken"),
+    "f_at_overturn": Variable("float64", "Hz", "floor frequency at overturning",
+                              comment="instantaneous frequency of a sweep or sine; "
+                                      "NaN if the body did not overturn"),
+    "a_norm_at_overturn": Variable("float64", "1",
+                                   "floor acceleration amplitude at overturning / (B/H) g",
+                                   comment="the paper's normalized acceleration; NaN if the "
+                                           "body did not overturn"),
+    "v_norm_at_overturn": Variable("float64", "1",
+                                   "floor velocity amplitude at overturning / v_H",
+                                   comment="the paper's normalized velocity (v_H of Eq. 9); "
+                                           "NaN if the body did not overturn"),
+}
+MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
+
+
+def empty(name, n):
+    """An array for ``n`` cells of variable ``name``, filled with NaN or the failed code."""
+    var = VARIABLES[name]
+    extra = tuple(len(MODE[1]) for _ in var.dims)
+    fill = np.nan if np.dtype(var.dtype).kind == "f" else (-1 if var.flags else 0)
+    return np.full((n, *extra), fill, dtype=var.dtype)
+
+
+def _flag_attrs(var):
+    values, meanings = var.flags
+    return {"flag_values": np.array(values, dtype=var.dtype),
+            "flag_meanings": " ".join(meanings)}
+
+
+def variable_attrs(name):
+    """CF attributes of a result variable."""
+    var = VARIABLES[name]
+    attrs = {"units": var.units, "long_name": var.long_name}
+    if var.flags:
+        attrs.update(_flag_attrs(var))
+    if var.comment:
+        attrs["comment"] = var.comment
+    return attrs
+
+
+def describe_excitation(ground):
+    """One line naming the horizontal excitation of the base scene (the ``sweep_law``)."""
+    kind = ground.get("kind", "none")
+    if kind == "sweep":
+        return (f"{ground.get('law', 'log')} frequency sweep holding the "
+                f"{ground.get('hold', 'acceleration')} amplitude, {ground.get('f_start')} to "
+                f"{ground.get('f_stop')} Hz over {ground.get('duration')} s")
+    if kind == "sine":
+        return "none (sine at a constant frequency)"
+    if kind == "record":
+        return f"none (record {ground.get('name') or ground.get('path')})"
+    return f"none ({kind})"
+
+
+def global_attrs(study, history=None):
+    """Global attributes: conventions, title, the study's text, version, sweep law, times."""
+    now = datetime.datetime.now(datetime.timezone.utc).replace(microsecond=0).isoformat()
+    line = history or f"sweep.run_study({study.source or study.name!r})"
+    return {
+        "Conventions": CONVENTIONS,
+        "title": study.title,
+        "study_name": study.name,
+        "study": study.text,
+        "study_file": study.source or "",
+        "source": f"{PACKAGE} {__version__}",
+        "version": __version__,
+        "sweep_law": describe_excitation(study.excitation),
+        "history": f"{now} {line} - {PACKAGE} {__version__}",
+        "date_created": now,
+    }
+
+
+def to_dataset(study, arrays, *, history=None):
+    """The study's Dataset from per-cell arrays in cell order.
+
+    Parameters
+    ----------
+    study : Study
+    arrays : dict of str to ndarray, shape (n_cells, ...)
+        Every variable of ``VARIABLES`` (see ``cells.run_chunk``).
+    history : str, optional
+        The command for the ``history`` attribute.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions = the study's dimensions (and ``mode``), coordinates = its axes.
+    """
+    import xarray as xr
+
+    dims = tuple(dim.name for dim in study.dims)
+    shape = study.shape
+    coords = {}
+    for dim in study.dims:
+        for axis in dim.axes:
+            coords[axis.name] = (dim.name, axis.coords,
+                                 {"units": axis.units, "long_name": axis.long_name,
+                                  **({"study_unit": axis.unit} if axis.unit else {})})
+    coords[MODE[0]] = (MODE[0], np.array(MODE[1]), MODE[2])
+    data = {}
+    for name, var in VARIABLES.items():
+        a = np.asarray(arrays[name], dtype=var.dtype)
+        data[name] = (dims + var.dims, a.reshape(shape + a.shape[1:]), variable_attrs(name))
+    return xr.Dataset(data, coords=coords, attrs=global_attrs(study, history))
+
+
+def encoding(ds):
+    """netCDF encoding: zlib level 1 on numbers; no ``_FillValue`` on integers and coordinates.
+
+    Integer flags carry their ``flag_values`` (a fill value would be a code of its own), and
+    coordinates are never missing.  Strings are stored uncompressed (netCDF-4 cannot filter
+    variable-length data).
+    """
+    enc = {}
+    for name, da in ds.variables.items():
+        e = {}
+        if da.dtype.kind in "iufb":
+            e.update(zlib=True, complevel=COMPLEVEL)
+        if da.dtype.kind in "iub" or name in ds.coords:
+            e["_FillValue"] = None
+        enc[name] = e
+    return enc

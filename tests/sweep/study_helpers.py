@@ -1,0 +1,48 @@
+"""Small studies, a command-line runner and dataset helpers for the study-runner tests."""
+import copy
+import os
+import subprocess
+import sys
+
+import yaml
+
+PY = sys.executable
+# the steady-rocking block, with friction high enough that it does not slide
+SCENE = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 0.8, "e_x": -0.8, "e_y": 0.2},
+         "excitation": {"horizontal": {"kind": "sine", "amplitude": "1.5 west",
+                                       "frequency": 4.0}},
+         "solver": {"t_end": 2.0}}
+# time and coordinate attributes that differ between two runs of the same study
+RUN_ATTRS = ("history", "date_created")
+
+
+def make_study(grid, **extra):
+    """A study dict on the shared scene (deep copies, safe to modify)."""
+    return {"name": "t", "scene": copy.deepcopy(SCENE), "grid": copy.deepcopy(grid), **extra}
+
+
+def write_study(path, study):
+    path.write_text(yaml.safe_dump(study, sort_keys=False))
+    return path
+
+
+def cli(args, cwd, timeout=120, env=None, module="sweep.run"):
+    """Run ``python -m <module> args`` in ``cwd``; the CompletedProcess."""
+    return subprocess.run([PY, "-m", module, *map(str, args)], cwd=cwd, env=env or cli_env(),
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def cli_env(**extra):
+    """The environment of a child process: no MPI launcher variables, no terminal mode."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("PMI_", "OMPI_", "PMIX_", "MPI_LOCAL", "MV2_"))}
+    env.update(CI="1", **extra)
+    return env
+
+
+def without_run_attrs(ds):
+    """The dataset without the attributes that record when and how it was made."""
+    ds = ds.copy()
+    for key in RUN_ATTRS:
+        ds.attrs.pop(key, None)
+    return ds

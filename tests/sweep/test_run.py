@@ -1,0 +1,94 @@
+"""The runner in one process: failed cells, overwrite refusal, dry run, kill and resume."""
+import signal
+import subprocess
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write_study
+
+import sweep
+from kernels import codes
+from sweep import store
+
+
+def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):
+    # a step budget of 20 is used up long before t_end by a rocking block
+    raw = make_study({"amplitude": {"values": [0.5, 1.5, 2.5], "unit": "west"},
+                      "solver.max_steps": [20, 1_000_000]}, output="out/fail.nc")
+    ds = sweep.run_study(raw)
+    assert ds["outcome"].dims == ("amplitude", "solver.max_steps")
+    tiny = ds.sel({"solver.max_steps": 20})
+    big = ds.sel({"solver.max_steps": 1_000_000})
+    assert tiny["outcome"].values.tolist() == [0, -1, -1]  # at rest: no steps needed
+    assert tiny["status"].values.tolist() == [codes.OK] + [codes.BUDGET_EXHAUSTED] * 2
+    assert tiny["overturned"].values.tolist() == [0, -1, -1]
+    assert np.all(big["outcome"].values >= 0) and np.all(big["status"].values != 2)
+
+    # the command line lists the failed cells at the end, and refuses to overwrite
+    study = write_study(tmp_path / "fail.yaml", raw)
+    done = cli([study], cwd=tmp_path, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "2 cells failed" in done.stderr and "budget_exhausted" in done.stderr
+    assert "amplitude=1.5, solver.max_steps=20" in done.stderr
+    result = tmp_path / "out" / "fail.nc"
+    on_disk = xr.open_dataset(result)
+    assert without_run_attrs(on_disk).identical(without_run_attrs(ds).assign_attrs(
+        study_file=str(study)))  # the dict's YAML is the file's text
+    assert not store.parts_dir(result).exists()  # parts removed once the dataset is written
+    stamp = result.stat().st_mtime_ns
+    again = cli([study], cwd=tmp_path, timeout=60)
+    assert again.returncode == 2 and "--force" in again.stderr and "Traceback" not in again.stderr
+    assert result.stat().st_mtime_ns == stamp
+    forced = cli([study, "--force", "--quiet"], cwd=tmp_path, timeout=120)
+    assert forced.returncode == 0 and result.stat().st_mtime_ns != stamp
+    assert "cells in" not in forced.stdout  # --quiet: no summary
+
+
+def test_dry_run_counts_and_estimates(tmp_path, small_study):
+    study = write_study(tmp_path / "s.yaml", small_study)
+    done = cli([study, "--dry-run"], cwd=tmp_path, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert "12 cells (amplitude 4 x frequency 3)" in done.stdout
+    assert "estimated run time" in done.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]
+
+
+# 240 cells of a block rocking to the end of 8 s: a few seconds, killed long before the end
+SLOW = {"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
+        "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}
+
+
+def _kill_when_parts(process, parts_dir, n_parts, signum, timeout=60.0):
+    """Send ``signum`` to ``process`` once ``n_parts`` part files exist; the count then."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end and process.poll() is None:
+        if parts_dir.exists() and len(list(parts_dir.glob("part-*.npz"))) >= n_parts:
+            process.send_signal(signum)
+            process.wait(timeout=30)
+            return len(list(parts_dir.glob("part-*.npz")))
+        time.sleep(0.005)
+    process.kill()
+    pytest.fail(f"the run ended before {n_parts} parts were written: {process.communicate()}")
+
+
+def test_sigkill_then_resume_gives_the_same_dataset(tmp_path):
+    raw = make_study(SLOW, output="r.nc")
+    raw["scene"]["solver"]["t_end"] = 8.0
+    study = write_study(tmp_path / "slow.yaml", raw)
+    process = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "1"],
+                               cwd=tmp_path, env=cli_env(), stdout=subprocess.DEVNULL,
+                               stderr=subprocess.PIPE)
+    parts_dir = store.parts_dir(tmp_path / "r.nc")
+    n_parts = _kill_when_parts(process, parts_dir, 20, signal.SIGKILL)
+    assert process.returncode == -signal.SIGKILL
+    assert 20 <= n_parts < 240 and not (tmp_path / "r.nc").exists()
+
+    resumed = cli([study, "--chunk-size", "7"], cwd=tmp_path, timeout=240)
+    assert resumed.returncode == 0, resumed.stderr
+    assert f"resuming: {n_parts} cells already done" in resumed.stderr
+    reference = cli([study, "-o", "ref.nc"], cwd=tmp_path, timeout=240)
+    assert reference.returncode == 0, reference.stderr
+    a, b = xr.open_dataset(tmp_path / "r.nc"), xr.open_dataset(tmp_path / "ref.nc")
+    assert without_run_attrs(a).identical(without_run_attrs(b))

@@ -1,0 +1,113 @@
+"""Study files: every problem at once with dotted paths, exit status 2 and nothing written."""
+import numpy as np
+import pytest
+from study_helpers import cli, make_study
+
+from sweep.study import load_study
+from sweep.yamlio import FileProblems
+
+BAD = """\
+name: bad
+scene:
+  body: {B: 0.1, H: 0.3}
+  contact: {mu: 0.8}
+  excitation:
+    horizontal: {kind: sine, amplitude: 1.5 west, frequency: 4.0}
+grid:
+  amplitude: {start: 1.0, stop: 3.0, num: 0, unit: west}
+  frequency: [1.0, 2 Hz, 3 m]
+  amplitud: [1, 2]
+  e_y: [0.1, 1.5, 0.2]
+  mu: {start: 0.1, stop: 0.5, num: 3, spacing: cubic}
+  solver.rtol: [1.0e-6, -1.0]
+  b_over_h: [0.2, 0]
+  phase: {start: 0, stop: 1, num: 2, unit: parsec}
+zip: [[e_y, frequency, nothing]]
+outptu: x.nc
+output: out/bad.nc
+"""
+EXPECTED = {  # dotted path -> a word of the message
+    "outptu": "did you mean 'output'",
+    "grid.amplitude.num": "integer >= 1",
+    "grid.frequency[2]": "expected a frequency",
+    "grid.amplitud": "did you mean 'amplitude'",
+    "grid.mu.spacing": "linear, log",
+    "grid.b_over_h": "positive",
+    "grid.phase.unit": "unknown unit",
+    "zip[0]": "not an axis of grid",
+    "grid.solver.rtol[1]": "greater than 0",
+    "grid.e_y[1]": "less than or equal to 1",
+}
+
+
+def test_every_problem_at_once(tmp_path):
+    with pytest.raises(FileProblems) as info:
+        load_study(_write(tmp_path, BAD))
+    problems = {p.path: p for p in info.value.problems}
+    for path, word in EXPECTED.items():
+        assert path in problems, f"{path} not reported; got {sorted(problems)}"
+        assert word in problems[path].message, problems[path]
+    assert problems["grid.e_y[1]"].value == 1.5 and problems["grid.amplitude.num"].value == 0
+    # 'frequency' is an axis (with its own problem), only 'nothing' is not
+    assert [p.value for p in info.value.problems if p.path == "zip[0]"] == ["nothing"]
+
+
+def _write(tmp_path, text, name="study.yaml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_cell_problems_once_per_axis_value(tmp_path):
+    raw = make_study({"amplitude": {"start": 1, "stop": 2, "num": 5, "unit": "west"},
+                      "e_y": [0.0, 2.0], "e_x": [-0.5, -3.0]})
+    raw["scene"]["contact"]["e_x"] = 9  # overridden by the axis in every cell: not reported
+    raw["scene"]["solver"]["t_end"] = -1  # the base scene's problem, reported once
+    with pytest.raises(FileProblems) as info:
+        load_study(raw)
+    paths = [p.path for p in info.value.problems]
+    assert sorted(paths) == ["grid.e_x[1]", "grid.e_y[1]", "scene.solver.t_end"]
+
+
+@pytest.mark.parametrize("text, path", [
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {e_y: [0.1]}\ngrid: {e_y: [0.2]}\n", "grid"),
+    ("grid: {e_y: [0.1]}\n", "scene"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\n", "grid"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {e_y: 0.1}\n", "grid.e_y"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {e_y: [0.1, 0.1]}\n", "grid.e_y"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {H: [0.3], b_over_h: [0.2]}\n", "grid.b_over_h"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {e_y: [0.1], e_x: [0.1, 0.2]}\nzip: [[e_y, e_x]]\n",
+     "zip[0]"),
+    ("scene: {body: {B: 0.1, H: 0.3}}\ngrid: {amplitude: [1 west, 2 gal]}\n", "grid.amplitude"),
+    ("scene: {body: {B: 0.1, H: 0.3}, excitation: {horizontal: {kind: record}}}\n"
+     "grid: {record: [elcentro1940_ns, nowhere]}\n", "grid.record[1]"),
+    ("[1, 2]\n", "(file)"),
+])
+def test_single_problems(tmp_path, text, path):
+    with pytest.raises(FileProblems) as info:
+        load_study(_write(tmp_path, text))
+    assert path in [p.path for p in info.value.problems], str(info.value)
+
+
+def test_axes_coordinates_and_units(tmp_path):
+    study = load_study(make_study({
+        "amplitude": {"start": 100, "stop": 300, "num": 3, "unit": "gal"},
+        "frequency": [2.0, 4.0], "b_over_h": [0.25, 0.5], "e_y": [0.0, 0.3]}))
+    amp, freq, ratio, e_y = study.axes
+    np.testing.assert_allclose(amp.coords, [1.0, 2.0, 3.0])  # SI
+    assert (amp.units, freq.units, ratio.units, e_y.units) == ("m s-2", "Hz", "1", "1")
+    west = load_study(make_study({"amplitude": {"values": [1.0, 1.5], "unit": "west"}})).axes[0]
+    np.testing.assert_allclose(west.coords, [1.0, 1.5])  # the normalized level, per body
+    assert west.units == "1" and "West" in west.long_name and west.unit == "west"
+    assert study.output.as_posix() == "results/t.nc"
+
+
+def test_cli_bad_file_exit_2_nothing_written(tmp_path):
+    study = _write(tmp_path, BAD)
+    done = cli([study], cwd=tmp_path, timeout=60)
+    assert done.returncode == 2, done.stderr
+    assert "Traceback" not in done.stderr
+    for path, word in EXPECTED.items():
+        assert f"{path}: " in done.stderr and word in done.stderr
+    assert "(got: 1.5)" in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["study.yaml"]  # no output, no parts
