@@ -123,8 +123,10 @@ def _face_impulses(q, e_x, e_y, mu_s, mu_k, b, h, i2):
     rR = dR - k2 * Pt
     PL = ((1.0 + k1) * rL - (1.0 - k1) * rR) / det
     PR = ((1.0 + k1) * rR - (1.0 - k1) * rL) / det
-    if min(PL, PR) < -1e-12 * (abs(PL) + abs(PR)):
-        return PL, PR, Pt, 0                # a corner separates: not a two-contact impact
+    if omega != 0.0 and min(PL, PR) < -1e-12 * (abs(PL) + abs(PR)):
+        # a rocking impact whose sticking two-contact solution pulls a corner down: the old
+        # pivot lifts (Housner's case); a flat landing goes on to the friction cap (2.3)
+        return PL, PR, Pt, 0
     if abs(Pt) <= mu_s * (PL + PR):
         return PL, PR, Pt, 0
     sigma = math.copysign(1.0, Vx) if abs(Vx) > 1e-14 else -math.copysign(1.0, Pt)

@@ -79,6 +79,8 @@ def select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol, 
     zeno_dt (2|omega|/|theta''| with a restoring theta'') is closed to face contact.
     A face contact sets q to it in place (omega = v = 0, u = the base's slip velocity).
     """
+    if abs(q[IOMEGA]) * b <= 1e-12 * (abs(q[IU]) + abs(q[IV])):
+        q[IOMEGA] = 0.0                 # round-off of a rotation-free impulse, not rocking
     omega = q[IOMEGA]
     VL = corner_velocity(q, -1.0, b, h)[1]
     VR = corner_velocity(q, 1.0, b, h)[1]

@@ -186,10 +186,6 @@ def test_energy_never_gained_free_scenes():
     assert not bad, f"{len(bad)} scenes gained energy; first {bad[0]}"
 
 
-@pytest.mark.xfail(strict=True, reason="squat blocks and e_x > 0: a single-corner impact at "
-                   "theta = 0 leaves the other corner moving into the floor (see "
-                   "test_face_impact_no_penetration_random) and the next corner mode then "
-                   "imposes the contact constraint on v without an impulse, adding energy")
 def test_energy_never_gained_any_free_scene():
     """The same law over the whole random domain (b/h up to 2.5, four friction values,
     e_x in [-1, 1]); about 2 % of these scenes gain energy, up to 0.5 J/kg."""
@@ -406,10 +402,6 @@ def test_flat_landing_stops(k, mu):
     assert r.mode_time["rest"] == pytest.approx(0.5, abs=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="flat landing with mu <= b/h is resolved as a "
-                   "single-corner impact (omega+ != 0, rocking) instead of the rotation-free "
-                   "capped impulse: _face_impulses tests the signs of the normal impulses of "
-                   "the uncapped tangential impulse before applying the friction cap")
 @pytest.mark.parametrize("B, H, k, mu", [(0.1, 0.3, 1.0, 0.3), (0.6, 0.3, 0.1, 0.5)])
 def test_flat_landing_slides(B, H, k, mu):
     """mu <= b/h and k < 1/mu: flat slide with u+ = u-(1 - mu k), omega+ = 0 (PHYSICS 2.3),

@@ -1,0 +1,86 @@
+"""What reaches the compiled kernel: read-only, Fortran-ordered and strided arrays give the
+same results as C-contiguous ones (interpolation.py's input tests), and ``run_cells``
+agrees with ``run_scene`` cell by cell."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from kernels import codes
+from kernels.api import record_buffer, run_cells, run_scene, scene_row
+from scenes import G, const, pulse, scene, sine
+
+RECORD = np.loadtxt(Path("/work/shared/records/elcentro1940_ns.txt"))[:, 1]
+
+
+def _scenes():
+    c = const(0.1, 0.3)
+    return [
+        scene(horizontal=sine(0.5 * G, 4.0), t_end=5.0),
+        scene(initial={"theta": 0.5 * c.alpha}, t_end=3.0),
+        scene(0.3, 0.3, mu=0.2, horizontal=pulse(0.5 * G, 0.5), t_end=3.0),
+        scene(mu=0.6, e_x=-0.8, e_y=0.2, t_end=20.0,
+              horizontal={"kind": "record", "samples": RECORD, "dt": 0.02, "scale": 2.0}),
+        scene(0.2, 0.6, mu=0.5, e_x=-0.5, e_y=0.3, horizontal=sine(0.4 * G, 1.5),
+              vertical={"kind": "record", "samples": RECORD[::-1], "dt": 0.02}, t_end=8.0),
+    ]
+
+
+@pytest.fixture(scope="module")
+def chunk():
+    records = []
+    rows = np.array([scene_row(sc, records) for sc in _scenes()])
+    return rows, record_buffer(records)
+
+
+@pytest.fixture(scope="module")
+def reference(chunk):
+    rows, rec = chunk
+    return run_cells(np.ascontiguousarray(rows), np.ascontiguousarray(rec))
+
+
+def test_read_only_and_fortran(chunk, reference):
+    rows, rec = chunk
+    rows_f = np.asfortranarray(rows)
+    rec_ro = rec.copy()
+    rec_ro.setflags(write=False)
+    rows_ro = rows_f.copy(order="F")
+    rows_ro.setflags(write=False)
+    assert rows_f.flags.f_contiguous and not rows_f.flags.c_contiguous
+    np.testing.assert_array_equal(run_cells(rows_f, rec_ro), reference)
+    np.testing.assert_array_equal(run_cells(rows_ro, rec_ro), reference)
+
+
+def test_strided_views(chunk, reference):
+    rows, rec = chunk
+    wide = np.zeros((2 * rows.shape[0], rows.shape[1] + 3))
+    wide[::2, 1:-2] = rows
+    rows_view = wide[::2, 1:-2]
+    rec_wide = np.zeros((rec.size, 2))
+    rec_wide[:, 1] = rec
+    rec_view = rec_wide[:, 1]
+    assert not rows_view.flags.c_contiguous and not rec_view.flags.c_contiguous
+    np.testing.assert_array_equal(run_cells(rows_view, rec_view), reference)
+
+
+def test_other_dtypes(chunk, reference):
+    rows, rec = chunk
+    rows_ld = rows.astype(np.longdouble)
+    np.testing.assert_array_equal(run_cells(rows_ld, list(rec)), reference)
+
+
+def test_run_cells_matches_run_scene(reference):
+    for k, sc in enumerate(_scenes()):
+        r = run_scene(sc)
+        res = reference[k]
+        assert codes.STATUS_NAMES[int(res[codes.R_STATUS])] == r.status
+        assert res[codes.R_IMPACTS] == len(r.impact_times)
+        assert res[codes.R_MAX_ABS_THETA] == r.max_abs_theta
+        assert res[codes.R_T_END] == r.t_final
+        for m, name in enumerate(codes.MODE_NAMES):
+            assert res[codes.R_MODE_TIME + m] == r.mode_time[name]
+
+
+def test_bad_shapes_raise():
+    with pytest.raises(ValueError, match="rows"):
+        run_cells(np.zeros((2, codes.N_PAR - 1)), np.zeros(1))
