@@ -5,9 +5,18 @@ all four coefficients unless they are given separately; ``const(B, H)`` gives th
 1.1 constants of a uniform rectangle.  g = 9.80665 m/s^2.
 """
 import math
+import os
 from collections import namedtuple
 
 G = 9.80665
+
+# ``make test-nojit`` runs test_impact.py as plain Python: loops over many scenes shrink
+NO_JIT = os.environ.get("NUMBA_DISABLE_JIT", "0") not in ("", "0")
+
+
+def count(n, n_nojit):
+    """n with the compiled kernel, n_nojit under NUMBA_DISABLE_JIT=1."""
+    return n_nojit if NO_JIT else n
 
 Const = namedtuple("Const", "b h r alpha beta i2 p eta")
 
