@@ -2,7 +2,10 @@
 
 Every compiled function of the package is decorated with :func:`jit`: cached on disk,
 numpy's error model (division by zero gives inf/nan, which explicit finite checks catch),
-and no fastmath (it would silently break ``isnan``/``isfinite``).  With
+and no fastmath (it would silently break ``isnan``/``isfinite``).  The small functions
+called inside every step (floor motion, corner geometry, mode dynamics, right-hand side) are
+compiled with ``jit(inline="always")``: a call between compiled functions that pass arrays
+costs more than their arithmetic (the steady-rocking scene runs ~1.4x faster inlined).  With
 ``NUMBA_DISABLE_JIT=1`` the decorator returns plain Python functions.
 """
 import numba

@@ -144,9 +144,38 @@ def _handle(k, mode, t, q, ctx, par, rec, body, contact, v_tol, zeno_dt):
     Vy = corner_velocity(q, sc, b, h)[1]
     if Vy > v_tol:                                      # it bounces: still airborne
         return ROTATION_JUMP, 0.0, 0.0, OK, flags
-    q[IV] -= Vy                                         # Zeno closure of the bounce
+    # Zeno closure of a bounce that would land again within zeno_dt: the normal impulse
+    # at the corner that stops it (it only takes energy out, PHYSICS 2.2)
+    rcx = corner(sc, q[ITHETA], b, h)[0]
+    P = -Vy / (1.0 + rcx * rcx / i2)
+    q[IV] += P
+    q[IOMEGA] += rcx * P / i2
     m, s2, sg2 = select_corner(q, sc, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol)
     return m, s2, sg2, OK, flags
+
+
+@jit
+def _polish(k, mode, n, t, z, f, dt, ctx, par, rec, body, mu_edge_s, theta_over, zbuf, q,
+            gbuf):
+    """Newton's step on event k from the stepped state z at t (f = dz/dt there): move z to
+    z + d f and return d.  The event was found on the dense output, one order less exact
+    than the step; this puts it on the root with the step's own accuracy."""
+    b, h = body[0], body[1]
+    to_full(mode, z, ctx, b, h, q)
+    event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
+    g0 = gbuf[k]
+    delta = 1e-7 * dt
+    for j in range(n):
+        zbuf[j] = z[j] + delta * f[j]
+    to_full(mode, zbuf, ctx, b, h, q)
+    event_values(mode, t + delta, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
+    slope = (gbuf[k] - g0) / delta
+    d = -g0 / slope if slope != 0.0 else 0.0
+    if not abs(d) < 0.01 * dt:
+        return 0.0
+    for j in range(n):
+        z[j] += d * f[j]
+    return d
 
 
 @jit
@@ -177,6 +206,50 @@ def _observe(mode, q, b, h, stats):
     if mode == TRANSLATION_JUMP or mode == ROTATION_JUMP:
         gap = q[IY] + min(corner(-1.0, q[ITHETA], b, h)[1], corner(1.0, q[ITHETA], b, h)[1])
         stats[2] = max(stats[2], gap)
+
+
+@jit
+def _rate(j, q, b, h):
+    """Rate of observed quantity j: theta (omega), x (u), lift (V_y of the lowest corner)."""
+    if j == 0:
+        return q[IOMEGA]
+    if j == 1:
+        return q[IU]
+    s = -1.0 if corner(-1.0, q[ITHETA], b, h)[1] < corner(1.0, q[ITHETA], b, h)[1] else 1.0
+    return corner_velocity(q, s, b, h)[1]
+
+
+@jit
+def _observe_turns(method, mode, n, z, z_new, K, dt, q0, q1, ctx, b, h, stats, zbuf, qs):
+    """Observe the extremes inside a step: where a rate changes sign between the step's
+    ends q0 and q1, its root on the dense output (Illinois' regula falsi) is one."""
+    for j in range(3 if mode == TRANSLATION_JUMP or mode == ROTATION_JUMP else 2):
+        fa = _rate(j, q0, b, h)
+        fb = _rate(j, q1, b, h)
+        if fa * fb >= 0.0:
+            continue
+        xa, xb = 0.0, 1.0
+        x_old = 2.0
+        side = 0
+        for _ in range(50):
+            x = (xa * fb - xb * fa) / (fb - fa)
+            dense(method, n, z, z_new, K, dt, x, zbuf)
+            to_full(mode, zbuf, ctx, b, h, qs)
+            fx = _rate(j, qs, b, h)
+            if abs(x - x_old) < 1e-12 or fx == 0.0:
+                break
+            x_old = x
+            if fx * fb > 0.0:
+                xb, fb = x, fx
+                if side == 1:
+                    fa *= 0.5
+                side = 1
+            else:
+                xa, fa = x, fx
+                if side == -1:
+                    fb *= 0.5
+                side = -1
+        _observe(mode, qs, b, h, stats)
 
 
 @jit
@@ -226,8 +299,12 @@ def run_scene(par, rec, res, log, hist):
     b = 0.5 * par[P_B]
     h = 0.5 * par[P_H]
     i2 = par[P_I2]
-    mu_s, mu_k = par[P_MU_S], par[P_MU_K]
+    mu_s = par[P_MU_S]
     mu_edge_s, mu_edge_k = par[P_MU_EDGE_S], par[P_MU_EDGE_K]
+    # mu_k > b/h >= mu_edge_k: flat sliding would tip the body onto its leading corner, where
+    # the lower edge friction tips it straight back.  The body slides flat on the verge of
+    # tipping instead, with the friction that holds theta'' = 0 there: b/h.
+    mu_k = min(par[P_MU_K], max(b / h, mu_edge_k))
     body = (b, h, i2, mu_k, mu_edge_k)
     contact = (mu_s, mu_k, mu_edge_s, mu_edge_k, par[P_E_X], par[P_E_Y])
     method = int(par[P_METHOD])
@@ -245,6 +322,7 @@ def run_scene(par, rec, res, log, hist):
     ztmp = np.zeros(6)
     zbuf = np.zeros(6)
     qs = np.zeros(6)
+    q_end = np.zeros(6)
     K = np.zeros((7, 6))
     ctx = np.zeros(N_CTX)
     gold = np.zeros(MAX_EVENTS)
@@ -254,8 +332,6 @@ def run_scene(par, rec, res, log, hist):
     mode_time = np.zeros(N_MODES)
 
     gwork = np.zeros(MAX_EVENTS)
-    stats = np.zeros(3)
-    mode_time = np.zeros(N_MODES)
 
     status = OK
     t = 0.0
@@ -336,7 +412,6 @@ def run_scene(par, rec, res, log, hist):
                 break
             dense(method, n, z, z_new, K, dt, xs, zbuf)
             to_full(mode, zbuf, ctx, b, h, qs)
-            _observe(mode, qs, b, h, stats)
             event_values(mode, t + xs * dt, qs, ctx, par, rec, body, mu_edge_s, theta_over,
                          gnew)
             for k in range(ne):
@@ -366,6 +441,8 @@ def run_scene(par, rec, res, log, hist):
             if dt > 0.0:
                 step(method, mode, n, t, z, dt, t_lim, par, rec, ctx, body, K, ztmp, z_new,
                      rtol, atol)
+                dt += _polish(k_e, mode, n, t + dt, z_new, K[6], dt, ctx, par, rec, body,
+                              mu_edge_s, theta_over, zbuf, qs, gwork)
             else:
                 for k in range(n):
                     z_new[k] = z[k]
@@ -375,12 +452,17 @@ def run_scene(par, rec, res, log, hist):
             to_full(mode, zbuf, ctx, b, h, qs)
             _record(hist, nh, nh * dt_out, qs, mode, par, rec)
             nh += 1
+        to_full(mode, z_new, ctx, b, h, q_end)
+        if dt > 0.0:
+            _observe_turns(method, mode, n, z, z_new, K, dt, q, q_end, ctx, b, h, stats, zbuf,
+                           qs)
+        _observe(mode, q_end, b, h, stats)
         mode_time[mode] += dt
         t += dt
         for k in range(n):
             z[k] = z_new[k]
-        to_full(mode, z, ctx, b, h, q)
-        _observe(mode, q, b, h, stats)
+        for k in range(6):
+            q[k] = q_end[k]
 
         if k_e < 0 and t >= t_lim and t < t_end:
             # a break of the floor motion: test the mode's guards with the new values

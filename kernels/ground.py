@@ -43,7 +43,7 @@ def sweep_phase(tau, par, off):
     return psi + par[off + G_PHASE], TWO_PI * f, TWO_PI * fdot
 
 
-@jit
+@jit(inline="always")
 def component(t, par, off, rec):
     """Acceleration [m/s^2] of one ground component at time t (zero outside its window)."""
     kind = par[off + G_KIND]
@@ -82,7 +82,7 @@ def component(t, par, off, rec):
     return math.nan
 
 
-@jit
+@jit(inline="always")
 def ground(t, par, rec):
     """(a_x, a_y): horizontal and vertical floor acceleration [m/s^2]."""
     return component(t, par, P_GX, rec), component(t, par, P_GY, rec)

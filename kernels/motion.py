@@ -41,7 +41,7 @@ def n_dof(mode):
     return 4
 
 
-@jit
+@jit(inline="always")
 def corner(s, theta, b, h):
     """Vector r_c from G to corner s (-1 left, +1 right) at angle theta (PHYSICS 1.1)."""
     c = math.cos(theta)
@@ -49,7 +49,7 @@ def corner(s, theta, b, h):
     return s * b * c + h * sn, s * b * sn - h * c
 
 
-@jit
+@jit(inline="always")
 def rotation_dynamics(theta, omega, s, a_x, g_e, b, h, i2):
     """Rocking about the fixed corner s: (theta'', F_c/m, N_c/m), PHYSICS 1.2 (3).
 
@@ -65,7 +65,7 @@ def rotation_dynamics(theta, omega, s, a_x, g_e, b, h, i2):
     return thdd, F, N
 
 
-@jit
+@jit(inline="always")
 def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2, mu):
     """One corner on the floor and slipping with sgn(V_cx) = sigma, PHYSICS 1.2 (4).
 
@@ -79,7 +79,7 @@ def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2, mu):
     return thdd, udd, N, D
 
 
-@jit
+@jit(inline="always")
 def rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, out):
     """Write dz/dt of the mode's compact state z into out."""
     a_x, a_y = ground(t, par, rec)
@@ -181,7 +181,7 @@ def from_full(mode, q, ctx, b, h, z):
             z[k] = q[k]
 
 
-@jit
+@jit(inline="always")
 def corner_velocity(q, s, b, h):
     """Velocity (V_cx, V_cy) of corner s: V_c = (u - omega r_cy, v + omega r_cx)."""
     rcx, rcy = corner(s, q[ITHETA], b, h)

@@ -10,7 +10,7 @@ import math
 
 from ._jit import jit
 from .codes import REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP
-from .motion import IOMEGA, ITHETA, IU, IV, corner_velocity, rotation_dynamics, \
+from .motion import IOMEGA, ITHETA, IU, IV, corner, corner_velocity, rotation_dynamics, \
     slide_rotation_dynamics
 
 
@@ -64,11 +64,33 @@ def select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol):
             return ROTATION_JUMP, s, 0.0
         return SLIDE_ROTATION, s, sigma
     thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)
-    if N <= 0.0:
+    if N > 0.0:
+        if abs(F) <= mu_edge_s * N:
+            return ROTATION, s, 0.0
+        return SLIDE_ROTATION, s, -math.copysign(1.0, F)
+    return _unstick(q, s, -math.copysign(1.0, F), a_x, g_e, b, h, i2, mu_edge_k)
+
+
+@jit
+def _unstick(q, s, sigma_f, a_x, g_e, b, h, i2, mu):
+    """Mode of a resting corner (V_c = 0) that sticking would have to pull down (N <= 0).
+
+    The corner flies if gravity alone lets it rise: its free acceleration
+    -(g_e + omega^2 r_cy) >= 0.  Otherwise the floor pushes (N_slip = (g_e + omega^2 r_cy)/D
+    > 0, PHYSICS 1.2 (4)) and the corner slips in the direction sigma in which its own
+    tangential acceleration u'' - theta'' r_cy - omega^2 r_cx points; sigma_f (against the
+    sticking friction force) when neither direction is consistent.
+    """
+    theta, omega = q[ITHETA], q[IOMEGA]
+    rcx, rcy = corner(s, theta, b, h)
+    if g_e + omega * omega * rcy <= 0.0:
         return ROTATION_JUMP, s, 0.0
-    if abs(F) <= mu_edge_s * N:
-        return ROTATION, s, 0.0
-    return SLIDE_ROTATION, s, -math.copysign(1.0, F)
+    for sigma in (sigma_f, -sigma_f):
+        thdd, udd, N, D = slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2,
+                                                  mu)
+        if N > 0.0 and D > 0.0 and sigma * (udd - thdd * rcy - omega * omega * rcx) > 0.0:
+            return SLIDE_ROTATION, s, sigma
+    return SLIDE_ROTATION, s, sigma_f
 
 
 @jit

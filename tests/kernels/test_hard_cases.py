@@ -269,10 +269,6 @@ def _random_forced_scene(rng, ns, ud):
                  horizontal=horizontal, vertical=vertical, t_end=20.0, max_events=50_000)
 
 
-@pytest.mark.xfail(strict=True, reason="2 of these 400 scenes (228 at t = 3.3606 s, 326 at "
-                   "t = 4.8629 s: El Centro NS+UD scaled up, mu > b/h, tipped past 1.4 rad) "
-                   "spend the event budget in the zero-time loop of "
-                   "test_impact.py::test_slip_stop_near_overturn_does_not_stall")
 def test_random_forced_scenes_finish():
     """400 random forced scenes (about 4 s): each ends ok or overturned, with well-formed
     impacts and mode times adding up to the simulated time."""

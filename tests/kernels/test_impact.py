@@ -226,9 +226,6 @@ def test_energy_never_gained_free_scenes_many():
                      f"{max(bad, key=lambda x: x[1])}")
 
 
-@pytest.mark.xfail(strict=True, reason="the bounce closure in driver._handle (rotation jump, "
-                   "q[IV] -= Vy) moves G vertically instead of applying a corner impulse; "
-                   "with v < 0 it adds |v| Vy, here 5.8e-8 J/kg at t = 0.2306 s")
 def test_bounce_closure_energy():
     """Corner bounces (e_y = 0.5) closing to rotation must not add energy: a plastic impulse
     at the corner that removes V_y can only take energy out (PHYSICS 2.2 step 6)."""
@@ -246,9 +243,6 @@ def test_bounce_closure_energy():
     assert rise[k] <= 1e-12 * E[0], f"E rose by {rise[k]:.3e} at t = {r.history['t'][k + 1]}"
 
 
-@pytest.mark.xfail(strict=True, reason="zero-time event loop: slide_rotation about the "
-                   "leading corner is entered with theta = omega = 0 and its impact event "
-                   "fires at once, forever (select_face -> start_slide)")
 def test_mixed_friction_does_not_stall():
     """Surface mu_k = 0.5 > b/h = 1/3 > edge mu_edge_k = 0.2, sliding start at 1 m/s.
 
@@ -265,11 +259,6 @@ def test_mixed_friction_does_not_stall():
     assert r.t_final > 0.0
 
 
-@pytest.mark.xfail(strict=True, reason="zero-time loop slide_rotation -> (slip stops) -> "
-                   "select_corner: sticking N <= 0 -> rotation_jump -> the corner's gap "
-                   "falls at once (free-flight corner acceleration -(g + omega^2 r_cy) < 0) "
-                   "-> impact with V_y = 0 -> rotation_jump ...; stick with N < 0 should "
-                   "lead to slip (N_slip = (g + omega^2 r_cy)/D > 0), not to flight")
 def test_slip_stop_near_overturn_does_not_stall():
     """A block tipped to theta = -1.495 rad, omega = -9.6 rad/s while its corner slips
     (one friction value 0.1476 < b/h, from a random free scene) must overturn: it is 0.076 rad

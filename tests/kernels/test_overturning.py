@@ -64,9 +64,6 @@ def test_overturn_time_is_crossing_time(theta_over):
     assert r.t_overturn == pytest.approx(t_ref, rel=1e-8)
 
 
-@pytest.mark.xfail(strict=True, reason="max_abs_theta also takes the trial points of the "
-                   "step that overshoots the overturning event (driver: _observe on the "
-                   "SAMPLES before the event is located); 1.6026 rad is reported for pi/2")
 def test_max_abs_theta_stops_at_overturning():
     """The simulation ends when |theta| reaches theta_overturn: max_abs_theta = pi/2."""
     r = run_scene(scene(mu=0.5, e_x=-0.5, e_y=0.3, horizontal=sine(0.4 * G, 1.5),
