@@ -97,6 +97,9 @@ def _ground_row(spec, path, records):
         if duration is None:
             raise ValueError(f"`{path}.duration` is required for a sweep")
         row[codes.G_LAW] = _LAWS[spec.get("law", "log")]
+        f0, f1, T = row[codes.G_F0], row[codes.G_F1], row[codes.G_DUR]
+        row[codes.G_FREQ] = (math.log(f1 / f0) if row[codes.G_LAW] == codes.LAW_LOG
+                             else f1 - f0) / T
         row[codes.G_HOLD] = _HOLDS[spec.get("hold", "acceleration")]
     elif kind == "record":
         samples = np.ascontiguousarray(spec["samples"], dtype=np.float64).ravel()

@@ -39,7 +39,8 @@ HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
 # Ground component parameters (12 floats per component).  SI units.
 #   G_AMP: sine/pulse: acceleration amplitude [m/s^2]; sweep: the held amplitude
 #          (m/s^2, m/s or m after G_HOLD); record: scale factor on the samples [-]
-#   G_FREQ: sine frequency [Hz]; G_F0/G_F1: sweep start/stop frequency [Hz]
+#   G_FREQ: sine frequency [Hz]; sweep: its rate, d(ln f)/dt [1/s] (log law) or df/dt
+#          [Hz/s] (linear law); G_F0/G_F1: sweep start/stop frequency [Hz]
 #   G_START, G_DUR: the window [s] (G_DUR = inf: no end; sweep: the sweep length)
 #   G_REC_OFF, G_REC_N, G_REC_DT: slice of the shared record buffer and its sample step
 (G_KIND, G_AMP, G_FREQ, G_PHASE, G_START, G_DUR, G_F0, G_F1, G_LAW, G_HOLD,

@@ -28,9 +28,9 @@ from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, H_AX, H_AY, H_MODE, H_T, N_MODES
                     R_MODE_TIME, R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN, R_T_REST,
                     R_V_AT_OVERTURN, REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION,
                     TRANSLATION_JUMP)
-from .events import (EV_FREE_FALL, EV_GAP_L, EV_IMPACT, EV_JUMP_OVERTURN, EV_LIFTOFF,
-                     EV_OVERTURN, EV_PAINLEVE, EV_SLIP, EV_STOP, MAX_EVENTS, event_values,
-                     locate, n_events, peak)
+from .events import (EV_GAP_L, EV_JUMP_OVERTURN, EV_LIFTOFF,
+                     EV_OVERTURN, EV_PAINLEVE, EV_SLIP, EV_STOP, MAX_EVENTS, event_value,
+                     event_values, locate, n_events, peak)
 from .ground import G, amplitudes, ground, ground_end, next_break
 from .impact import CLAMPED, IMPACT_PAINLEVE, corner_impact, face_impact
 from .integrate import dense, next_step_size, step
@@ -162,14 +162,13 @@ def _polish(k, mode, n, t, z, f, dt, ctx, par, rec, body, mu_edge_s, theta_over,
     than the step; this puts it on the root with the step's own accuracy."""
     b, h = body[0], body[1]
     to_full(mode, z, ctx, b, h, q)
-    event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
-    g0 = gbuf[k]
+    g0 = event_value(k, mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
     delta = 1e-7 * dt
     for j in range(n):
         zbuf[j] = z[j] + delta * f[j]
     to_full(mode, zbuf, ctx, b, h, q)
-    event_values(mode, t + delta, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
-    slope = (gbuf[k] - g0) / delta
+    slope = (event_value(k, mode, t + delta, q, ctx, par, rec, body, mu_edge_s, theta_over,
+                         gbuf) - g0) / delta
     d = -g0 / slope if slope != 0.0 else 0.0
     if not abs(d) < 0.01 * dt:
         return 0.0

@@ -72,12 +72,24 @@ def event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, out):
 
 
 @jit
+def event_value(k, mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf):
+    """Event function k alone; the rocking modes' impact and overturning need no forces."""
+    if mode == ROTATION or mode == SLIDE_ROTATION:
+        if k == EV_IMPACT:
+            return -ctx[CTX_S] * q[ITHETA]
+        if k == EV_OVERTURN:
+            return theta_over - abs(q[ITHETA])
+    event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
+    return gbuf[k]
+
+
+@jit
 def _value_at(x, k, method, mode, n, t, z, z_new, K, h, ctx, par, rec, body, mu_edge_s,
               theta_over, zbuf, q, gbuf):
     dense(method, n, z, z_new, K, h, x, zbuf)
     to_full(mode, zbuf, ctx, body[0], body[1], q)
-    event_values(mode, t + x * h, q, ctx, par, rec, body, mu_edge_s, theta_over, gbuf)
-    return gbuf[k]
+    return event_value(k, mode, t + x * h, q, ctx, par, rec, body, mu_edge_s, theta_over,
+                       gbuf)
 
 
 @jit

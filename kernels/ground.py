@@ -11,7 +11,7 @@ import math
 
 
 from ._jit import jit
-from .codes import (G_AMP, G_DUR, G_F0, G_F1, G_FREQ, G_HOLD, G_KIND, G_LAW, G_NONE,
+from .codes import (G_AMP, G_DUR, G_F0, G_FREQ, G_HOLD, G_KIND, G_LAW, G_NONE,
                     G_PHASE, G_PULSE_RECT, G_PULSE_TRI, G_REC_DT, G_REC_N, G_REC_OFF,
                     G_RECORD, G_SINE, G_START, G_SWEEP, HOLD_ACCELERATION, HOLD_VELOCITY,
                     LAW_LOG, P_GX, P_GY)
@@ -20,14 +20,12 @@ TWO_PI = 2.0 * math.pi
 G = 9.80665  # standard gravity [m/s^2]
 
 
-@jit
+@jit(inline="always")
 def sweep_phase(tau, par, off):
     """Phase psi, its rate psi' = 2 pi f and psi'' of a sweep at time tau after its start."""
     f0 = par[off + G_F0]
-    f1 = par[off + G_F1]
-    T = par[off + G_DUR]
     if par[off + G_LAW] == LAW_LOG:
-        k = math.log(f1 / f0) / T
+        k = par[off + G_FREQ]              # ln(f1/f0)/T
         ekt = math.exp(k * tau)
         if k == 0.0:
             psi = TWO_PI * f0 * tau
@@ -36,7 +34,7 @@ def sweep_phase(tau, par, off):
         f = f0 * ekt
         fdot = k * f
     else:
-        slope = (f1 - f0) / T
+        slope = par[off + G_FREQ]          # (f1 - f0)/T
         psi = TWO_PI * (f0 * tau + 0.5 * slope * tau * tau)
         f = f0 + slope * tau
         fdot = slope
