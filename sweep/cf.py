@@ -4,8 +4,9 @@
 ``long_name``, flags for integer codes (from ``kernels.codes``) and any extra dimension.
 ``cells.run_chunk`` fills arrays of these dtypes; :func:`to_dataset` shapes them onto the
 study's dimensions; :func:`encoding` chooses how they are stored (zlib level 1, no
-``_FillValue`` on integer flags and coordinates).  xarray is imported only when a Dataset is
-built.
+``_FillValue`` on integer flags and coordinates).  ``REFINE_VARIABLES`` and
+:func:`refine_dataset` do the same for the boundaries of a refine study (``sweep.refine``).
+xarray is imported only when a Dataset is built.
 """
 import datetime
 from collections import namedtuple
@@ -14,7 +15,7 @@ import numpy as np
 
 from kernels import codes
 
-from . import __version__
+from . import __version__, refine
 
 CONVENTIONS = "CF-1.11"
 PACKAGE = "rigid-block-sweeps"
@@ -66,6 +67,37 @@ VARIABLES = {
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 
+# Results of a refine study, one per line (combination of the other axes).  ``units=None``: the
+# refined axis's units; ``{axis}`` in a long name: the refined axis's long name; dims
+# ``(REFINED,)``: along the refined axis's coarse values too.
+REFINED = "refined"
+BRACKET_FLAGS = (tuple(range(len(refine.BRACKET_NAMES))), refine.BRACKET_NAMES)
+REFINE_VARIABLES = {
+    "boundary": Variable("float64", None, "{axis}: overturning boundary",
+                         comment="middle of [boundary_lower, boundary_upper]: the lowest value "
+                                 "at which the body overturns, within half the bracket's "
+                                 "width; NaN without a bracket"),
+    "boundary_lower": Variable("float64", None,
+                               "{axis}: highest value found at which the body stood",
+                               comment="NaN when the body overturned at the lowest value"),
+    "boundary_upper": Variable("float64", None,
+                               "{axis}: lowest value found at which the body overturned",
+                               comment="NaN when the body never overturned in the range, or a "
+                                       "simulation failed first"),
+    "bracket": Variable("int8", "1", "how the overturning boundary was bracketed",
+                        BRACKET_FLAGS,
+                        comment="never_overturned, overturned_at_start: no bracket in the "
+                                "range of the coarse values; simulation_failed: bisection "
+                                "stopped at a failed simulation, see the bracket so far"),
+    "simulations": Variable("int32", "1", "simulations run (coarse values and midpoints)"),
+    "coarse_transitions": Variable("int32", "1", "changes between standing and overturned "
+                                                 "along the coarse values",
+                                   comment="1: one boundary; more: the body overturns in bands "
+                                           "and the lowest bracket is refined"),
+    "coarse_overturned": Variable("int8", "1", "body overturned at the coarse values",
+                                  OVERTURNED_FLAGS, dims=(REFINED,)),
+}
+
 
 def empty(name, n):
     """An array for ``n`` cells of variable ``name``, filled with NaN or the failed code."""
@@ -81,10 +113,14 @@ def _flag_attrs(var):
             "flag_meanings": " ".join(meanings)}
 
 
-def variable_attrs(name):
-    """CF attributes of a result variable."""
-    var = VARIABLES[name]
-    attrs = {"units": var.units, "long_name": var.long_name}
+def variable_attrs(name, table=None, axis=None):
+    """CF attributes of a result variable of ``table`` (default ``VARIABLES``).
+
+    ``axis``: the refined axis, for the units and long names of ``REFINE_VARIABLES``.
+    """
+    var = (VARIABLES if table is None else table)[name]
+    attrs = {"units": axis.units if var.units is None else var.units,
+             "long_name": var.long_name.format(axis=axis.long_name if axis else "")}
     if var.flags:
         attrs.update(_flag_attrs(var))
     if var.comment:
@@ -144,18 +180,79 @@ def to_dataset(study, arrays, *, history=None):
 
     dims = tuple(dim.name for dim in study.dims)
     shape = study.shape
-    coords = {}
-    for dim in study.dims:
-        for axis in dim.axes:
-            coords[axis.name] = (dim.name, axis.coords,
-                                 {"units": axis.units, "long_name": axis.long_name,
-                                  **({"study_unit": axis.unit} if axis.unit else {})})
+    coords = _coords(study)
     coords[MODE[0]] = (MODE[0], np.array(MODE[1]), MODE[2])
     data = {}
     for name, var in VARIABLES.items():
         a = np.asarray(arrays[name], dtype=var.dtype)
         data[name] = (dims + var.dims, a.reshape(shape + a.shape[1:]), variable_attrs(name))
     return xr.Dataset(data, coords=coords, attrs=global_attrs(study, history))
+
+
+def _coords(study):
+    """Coordinates of every axis of a study, with their CF attributes."""
+    coords = {}
+    for dim in study.dims:
+        for axis in dim.axes:
+            coords[axis.name] = (dim.name, axis.coords,
+                                 {"units": axis.units, "long_name": axis.long_name,
+                                  **({"study_unit": axis.unit} if axis.unit else {})})
+    return coords
+
+
+def refine_attrs(study, rounds, simulations):
+    """Global attributes of a refine study: its settings and what it cost."""
+    _, axis = refine.refined_axis(study)
+    return {
+        "refine_axis": axis.name,
+        "refine_tolerance": study.refine.tolerance,
+        "refine_tolerance_units": axis.units,
+        "refine_boundary": f"lowest {axis.name} at which the body overturns, by bisection "
+                           "from the bracket between the first coarse value that overturned "
+                           "and the one below it, to a bracket no wider than the tolerance",
+        "refine_rounds": int(rounds),
+        "refine_simulations": int(simulations),
+        "refine_max_simulations": refine.max_simulations(study),
+        "refine_dense_grid_simulations": refine.dense_simulations(study),
+    }
+
+
+def refine_dataset(study, arrays, *, rounds, history=None):
+    """The Dataset of a refine study from per-line arrays (``refine.arrays``).
+
+    Parameters
+    ----------
+    study : Study
+        A study with ``refine``.
+    arrays : dict of str to ndarray, shape (n_lines, ...)
+        Every variable of ``REFINE_VARIABLES``, lines in C order of the other dimensions.
+    rounds : int
+        Rounds run, the coarse one included.
+    history : str, optional
+        The command for the ``history`` attribute.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions = the study's dimensions without the refined one (``coarse_overturned``
+        has them all); coordinates = every axis, the refined one at its coarse values.
+    """
+    import xarray as xr
+
+    k, axis = refine.refined_axis(study)
+    dims = tuple(dim.name for dim in study.dims)
+    line_dims, shape = dims[:k] + dims[k + 1:], refine.line_shape(study)
+    data = {}
+    for name, var in REFINE_VARIABLES.items():
+        a = np.asarray(arrays[name], dtype=var.dtype)
+        attrs = variable_attrs(name, REFINE_VARIABLES, axis)
+        if var.dims:  # along the coarse values: the refined dimension back at its place
+            data[name] = (dims, np.moveaxis(a.reshape(shape + a.shape[-1:]), -1, k), attrs)
+        else:
+            data[name] = (line_dims, a.reshape(shape), attrs)
+    attrs = {**global_attrs(study, history),
+             **refine_attrs(study, rounds, int(np.sum(arrays["simulations"])))}
+    return xr.Dataset(data, coords=_coords(study), attrs=attrs)
 
 
 def encoding(ds):

@@ -6,8 +6,10 @@
 
 Rank 0 reads and checks the study (every problem at once, exit status 2, nothing written),
 prepares the part files (resuming from those of a killed run) and deals the chunks; every rank
-computes and writes its parts; rank 0 merges them into the dataset.  ``run_study`` does the
-same in one process and returns the Dataset (``sweep.run_study`` in a notebook).
+computes and writes its parts; rank 0 merges them into the dataset.  A study with ``refine:``
+runs in rounds (``sweep.refine``): rank 0 deals each round's cells the same way, merges the
+round and decides the next one.  ``run_study`` does the same in one process and returns the
+Dataset (``sweep.run_study`` in a notebook).
 """
 import argparse
 import os
@@ -18,7 +20,7 @@ import numpy as np
 
 from kernels import codes
 
-from . import cf, grid, mpi, store
+from . import cf, grid, mpi, refine, store
 from .cli import EXIT_BAD_INPUT
 from .progress import Progress, format_seconds
 from .study import load_study
@@ -42,12 +44,32 @@ def _shape_text(study):
     return " x ".join(f"{dim.name} {dim.size}" for dim in study.dims)
 
 
+def _tolerance_text(study):
+    _, axis = refine.refined_axis(study)
+    return f"{study.refine.tolerance:g} {axis.unit if axis.body_relative else axis.units}"
+
+
+def _refine_text(study):
+    """What a refine study will run, at most."""
+    _, axis = refine.refined_axis(study)
+    lines = study.n_cells // axis.coords.size
+    return (f"refine {axis.name} to {_tolerance_text(study)} on {lines} line"
+            f"{'s' if lines != 1 else ''}: {study.n_cells} coarse cells ({_shape_text(study)}), "
+            f"then at most {refine.max_rounds(study)} rounds of one midpoint per line: at most "
+            f"{refine.max_simulations(study)} simulations (a grid of the same resolution: "
+            f"{refine.dense_simulations(study)} cells)")
+
+
 def _dry_run(study, size, seed, done):
     """Print the cell count and an estimate of the run time from a timed sample of cells."""
     from .cells import run_chunk, warm_up
 
     n, left = study.n_cells, study.n_cells - len(done)
-    _say(f"study {study.name}: {n} cells ({_shape_text(study)})")
+    if study.refine:
+        left = refine.max_simulations(study)
+        _say(f"study {study.name}: {_refine_text(study)}")
+    else:
+        _say(f"study {study.name}: {n} cells ({_shape_text(study)})")
     _say(f"output: {study.output}" + (" (exists: --force to overwrite)"
                                       if study.output.exists() else ""))
     if len(done):
@@ -61,7 +83,8 @@ def _dry_run(study, size, seed, done):
     per_cell = (time.perf_counter() - t0) / len(sample)
     estimate = per_cell * left
     _say(f"estimated run time: {format_seconds(per_cell)} per cell (timed on {len(sample)}), "
-         f"{format_seconds(estimate)} for {left} cells on 1 rank"
+         f"{format_seconds(estimate)} for {'at most ' if study.refine else ''}{left} cells "
+         "on 1 rank"
          + (f", about {format_seconds(estimate / size)} on {size} ranks" if size > 1 else "")
          + f"; plus start-up (kernel load {format_seconds(compile_s)})")
 
@@ -88,6 +111,15 @@ def _plan(comm, args):
     except store.StoreError as err:
         _say(f"sweep.run: error: {err}", file=sys.stderr)
         return _stop(comm, EXIT_INPUT), None
+    from .cells import warm_up
+    common = {"exit": None, "text": study.text, "source": study.source,
+              "output": str(study.output), "parts": str(parts.directory)}
+    if study.refine:  # rounds are dealt one by one (_run_refine)
+        if not args.quiet:
+            _say(f"sweep.run: {study.name}: {_refine_text(study)}; on {size} "
+                 f"rank{'s' if size > 1 else ''}", file=sys.stderr)
+        warm_up()
+        return [common] * size, study
     n = study.n_cells
     done = parts.done_cells()
     chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
@@ -98,11 +130,8 @@ def _plan(comm, args):
         if len(done):
             _say(f"sweep.run: resuming: {len(done)} cells already done in {parts.directory}",
                  file=sys.stderr)
-    from .cells import warm_up
     warm_up()  # rank 0 compiles (or loads the cache) before the others start
-    common = {"exit": None, "text": study.text, "source": study.source,
-              "output": str(study.output), "parts": str(parts.directory), "done": len(done)}
-    return [{**common, "chunks": dealt[rank]} for rank in range(size)], study
+    return [{**common, "done": len(done), "chunks": dealt[rank]} for rank in range(size)], study
 
 
 def _summary(study, arrays, wall, stats, quiet, size):
@@ -133,6 +162,79 @@ def _import_xarray():
     import xarray  # noqa: F401  (for the merge, while rank 0 waits for the others)
 
 
+def _refine_summary(study, brackets, wall, stats, quiet, size):
+    """Counts of the brackets, simulations against a dense grid, lines that failed."""
+    k, _ = refine.refined_axis(study)
+    first_cells = refine.coarse_cells(study)[:, 0]
+    if not quiet:
+        counts = ", ".join(f"{int(np.sum(brackets.flag == code))} {name.replace('_', ' ')}"
+                           for code, name in enumerate(refine.BRACKET_NAMES))
+        _say(f"sweep.run: wrote {study.output}: {brackets.flag.size} lines in "
+             f"{brackets.rounds} rounds, {int(brackets.simulations.sum())} simulations (at "
+             f"most {refine.max_simulations(study)}; a grid of the same resolution: "
+             f"{refine.dense_simulations(study)}) in {wall:.1f} s on {size} "
+             f"rank{'s' if size > 1 else ''}; {counts}")
+        if size > 1:
+            busy = ", ".join(f"rank {r}: {stats[r][0]} cells {stats[r][1]:.1f} s"
+                             for r in sorted(stats))
+            _say(f"sweep.run: busy time per rank: {busy}")
+    failed = np.flatnonzero(brackets.flag == refine.FAILED)
+    if failed.size:
+        _say(f"sweep.run: a simulation failed on {failed.size} line"
+             f"{'s' if failed.size > 1 else ''}; bisection stopped there (bracket = "
+             "simulation_failed):", file=sys.stderr)
+        for line in failed[:MAX_LISTED]:
+            coords = grid.cell_coords(study, first_cells[line])
+            coords.pop(study.dims[k].name)
+            where = ", ".join(f"{key}={v!r}" for key, v in coords.items())
+            _say(f"  line {line} ({where}): bracket [{brackets.lower[line]!r}, "
+                 f"{brackets.upper[line]!r}]", file=sys.stderr)
+        if failed.size > MAX_LISTED:
+            _say(f"  ... and {failed.size - MAX_LISTED} more", file=sys.stderr)
+
+
+def _run_refine(comm, args, study, parts_dir, t_start):
+    """The rounds of a refine study: rank 0 plans and merges each one, every rank computes."""
+    rank, size = comm.Get_rank(), comm.Get_size()
+    if rank != 0:
+        while (plan := mpi.distribute(comm)) is not None:
+            mpi.work(comm, plan["study"], plan["chunks"], store=store.PartStore(plan["parts"]))
+        mpi.barrier(comm)
+        return EXIT_OK
+    stats = {}
+
+    def evaluate(index, round_study):
+        parts = store.PartStore(store.round_dir(parts_dir, index))
+        parts.prepare(round_study, discard=True)  # the study's fingerprint guards the folder
+        n, done = round_study.n_cells, parts.done_cells()
+        chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
+        dealt = grid.plan(n, done, chunk_size, size, args.seed)
+        if len(done) and not args.quiet:
+            _say(f"sweep.run: resuming round {index}: {len(done)} of {n} cells already done "
+                 f"in {parts.directory}", file=sys.stderr)
+        mpi.distribute(comm, [{"study": round_study, "parts": str(parts.directory),
+                               "chunks": chunks} for chunks in dealt])
+        progress = Progress(n, len(done), quiet=args.quiet, prefix=f"sweep.run: round {index}")
+        _, busy = mpi.work(comm, round_study, dealt[0], store=parts, progress=progress,
+                           on_idle=_import_xarray)
+        progress.close()
+        for r, (cells, seconds) in busy.items():
+            before = stats.get(r, (0, 0.0))
+            stats[r] = (before[0] + cells, before[1] + seconds)
+        return parts.merge(n)["overturned"]
+
+    brackets = refine.bisect(study, evaluate)
+    mpi.distribute(comm, [None] * size)
+    command = " ".join(["python -m sweep.run", *args.argv])
+    ds = cf.refine_dataset(study, refine.arrays(brackets), rounds=brackets.rounds,
+                           history=f"{command} ({size} ranks)")
+    store.write_netcdf(ds, study.output)
+    store.PartStore(parts_dir).remove()
+    _refine_summary(study, brackets, time.perf_counter() - t_start, stats, args.quiet, size)
+    mpi.barrier(comm)
+    return EXIT_OK
+
+
 def _run(comm, args):
     rank, size = comm.Get_rank(), comm.Get_size()
     t_start = time.perf_counter()
@@ -155,6 +257,8 @@ def _run(comm, args):
                            check_cells=False)
         if not warm:
             warm_up()  # loads what rank 0 compiled into the cache
+    if study.refine:
+        return _run_refine(comm, args, study, plan["parts"], t_start)
     parts = store.PartStore(plan["parts"])
     progress = Progress(study.n_cells, plan["done"], quiet=args.quiet) if rank == 0 else None
     _, stats = mpi.work(comm, study, plan["chunks"], store=parts, progress=progress,
@@ -237,7 +341,8 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
     Returns
     -------
     xarray.Dataset
-        The dataset of DESIGN.md section 6, as ``python -m sweep.run`` writes it.
+        The dataset of DESIGN.md section 6, as ``python -m sweep.run`` writes it; for a
+        study with ``refine``, its boundaries (``cf.refine_dataset``).
 
     Raises
     ------
@@ -245,13 +350,22 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
         Every problem of the study, with dotted paths.
     """
     study = load_study(study)
-    n = study.n_cells
-    chunks = grid.plan(n, [], chunk_size or grid.default_chunk_size(n, 1), 1, seed)[0]
-    shown = Progress(n, quiet=not progress, prefix="sweep.run_study")
-    kept, _ = mpi.work(mpi.SerialComm(), study, chunks, progress=shown)
-    shown.close()
-    return cf.to_dataset(study, store.merge(kept, n),
-                         history=f"sweep.run_study({study.source or study.name!r})")
+    history = f"sweep.run_study({study.source or study.name!r})"
+
+    def run(cells_study, prefix="sweep.run_study"):
+        n = cells_study.n_cells
+        chunks = grid.plan(n, [], chunk_size or grid.default_chunk_size(n, 1), 1, seed)[0]
+        shown = Progress(n, quiet=not progress, prefix=prefix)
+        kept, _ = mpi.work(mpi.SerialComm(), cells_study, chunks, progress=shown)
+        shown.close()
+        return store.merge(kept, n)
+
+    if study.refine:
+        brackets = refine.bisect(study, lambda index, round_study: run(
+            round_study, f"sweep.run_study: round {index}")["overturned"])
+        return cf.refine_dataset(study, refine.arrays(brackets), rounds=brackets.rounds,
+                                 history=history)
+    return cf.to_dataset(study, run(study), history=history)
 
 
 if __name__ == "__main__":

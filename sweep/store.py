@@ -4,9 +4,11 @@ Each finished chunk becomes one part file ``part-<first cell>.npz`` in ``<output
 written under a temporary name, flushed to disk and renamed (``os.replace`` is atomic): a part
 either exists whole or not at all, whatever moment a run is killed.  A part holds the ``cell``
 ids it covers, so a run resumes from whatever parts exist with any chunk size and rank count.
-``manifest.json`` records a fingerprint of the study (base scene, axes, kernel sources), so
-that parts of another version of a study are never merged.  The dataset is written to a
-temporary file in the output's folder and renamed, so a reader never sees half a file.
+``manifest.json`` records a fingerprint of the study (base scene, axes, refine settings, kernel
+sources), so that parts of another version of a study are never merged.  A refine study keeps
+the parts of each round in a folder of its own (``round-000/``, ``round-001/``, ...).  The
+dataset is written to a temporary file in the output's folder and renamed, so a reader never
+sees half a file.
 """
 import hashlib
 import json
@@ -35,12 +37,20 @@ def parts_dir(output):
     return output.with_name(output.name + ".parts")
 
 
+def round_dir(directory, index):
+    """Folder of the parts of a refine study's round ``index`` inside its parts folder."""
+    return Path(directory) / f"round-{index:03d}"
+
+
 def fingerprint(study):
-    """Hash of what decides a study's results: base scene, axes and their values, kernel."""
+    """Hash of what decides a study's results: base scene, axes and their values, refine
+    settings, kernel."""
     content = {"scene": study.scene,
                "dims": [[dim.name, [[a.name, list(a.values)] for a in dim.axes]]
                         for dim in study.dims],
                "version": __version__, "kernel": kernel_digest()}
+    if study.refine is not None:
+        content["refine"] = [study.refine.axis, study.refine.tolerance]
     text = json.dumps(content, sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()
 

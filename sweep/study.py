@@ -2,10 +2,12 @@
 
 ``load_study`` reads a YAML file (or takes a dict), checks it and, unless told not to, every
 cell's scene; all problems are reported at once as :class:`~sweep.yamlio.FileProblems` with
-dotted paths (``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``).  A problem that a cell's
-scene shows because of an axis value is reported once, at that value (``grid.amplitude[3]``).
-Coordinates are kept in SI units, except for body-relative units (``west``, ``v_H``,
-``alpha``), whose numbers are kept as the normalized levels they are (CF units ``1``).
+dotted paths (``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).
+A problem that a cell's scene shows because of an axis value is reported once, at that value
+(``grid.amplitude[3]``).  An optional ``refine: {axis, tolerance}`` asks for the overturning
+boundary along one axis by bisection (``sweep.refine``).  Coordinates are kept in SI units,
+except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as the
+normalized levels they are (CF units ``1``).
 """
 import difflib
 import math
@@ -21,7 +23,8 @@ from . import grid, units
 from .schema import load_scene, resolve_scene
 from .yamlio import MISSING, FileProblems, Problem, join_path, parse_yaml, read_text
 
-KEYS = ("name", "title", "description", "scene", "grid", "zip", "output")
+KEYS = ("name", "title", "description", "scene", "grid", "zip", "refine", "output")
+REFINE_KEYS = ("axis", "tolerance")
 SPEC_KEYS = ("start", "stop", "num", "spacing", "unit", "values")
 SPACINGS = ("linear", "log")
 OUTPUT_DIR = "results"  # default output: results/<name>.nc, relative to the working directory
@@ -51,6 +54,8 @@ class Axis:
         CF attributes of the coordinate.
     unit : str
         The unit written in the study ('' for none).
+    dimension : str
+        Dimension of the values (``units.DIMENSIONS``), or "name".
     """
 
     name: str
@@ -59,6 +64,12 @@ class Axis:
     units: str
     long_name: str
     unit: str = ""
+    dimension: str = "name"
+
+    @property
+    def body_relative(self):
+        """True when the coordinates are levels of ``west``, ``v_H`` or ``alpha``."""
+        return self.units == "1" and self.dimension not in ("name", "dimensionless")
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +82,23 @@ class Dim:
     @property
     def size(self):
         return len(self.axes[0].values)
+
+
+@dataclass(frozen=True)
+class Refine:
+    """Bisection of the overturning boundary along one axis (``refine:``, see ``sweep.refine``).
+
+    Attributes
+    ----------
+    axis : str
+        The refined axis: a dimension of its own, numeric, with increasing values.
+    tolerance : float
+        Largest width of a final bracket, in the units of the axis's coordinates (SI, or the
+        body-relative level).
+    """
+
+    axis: str
+    tolerance: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,6 +114,7 @@ class Study:
     source: str = None
     base_dir: Path = Path(".")
     description: str = ""
+    refine: Refine = None
 
     @property
     def axes(self):
@@ -269,7 +298,7 @@ def _numeric_axis(name, values, unit, allowed, path, problems):
     rel = relative.pop() if relative else None
     coords = np.array([q.value if rel else q.to_si() for q in quantities], dtype=np.float64)
     return Axis(name, tuple(values), coords, "1" if rel else CF_UNITS[found],
-                _long_name(name, found, rel), unit or (rel or ""))
+                _long_name(name, found, rel), unit or (rel or ""), found)
 
 
 def _axis_name_ok(name, path, problems):
@@ -341,6 +370,86 @@ def _zip(raw, axes, names, problems):
             continue
         out.append((dim or group[0], group))
     return out
+
+
+def _tolerance(value, axis, path, problems):
+    """A refine tolerance in the units of ``axis``'s coordinates, or None (problem appended).
+
+    A bare number is in the unit the axis is written in (its ``unit``), else in the units of
+    its coordinates; a string carries its own unit (``5 gal``, ``0.01 west``).
+    """
+    if not (_number(value) or isinstance(value, str)):
+        problems.append(Problem(path, value, "must be a positive number or a quantity "
+                                             "such as '0.01 west' or '5 gal'"))
+        return None
+    raw = f"{value!r} {axis.unit}" if _number(value) and axis.unit else value
+    try:
+        quantity = units.parse_quantity(raw, axis.dimension)
+    except ValueError as err:
+        problems.append(Problem(path, value, str(err)))
+        return None
+    if quantity.body_relative != axis.body_relative:  # one relative unit per dimension
+        problems.append(Problem(path, value, f"give it in the unit of grid.{axis.name} "
+                                             f"({axis.unit or axis.units})"))
+        return None
+    tolerance = quantity.value if axis.body_relative else quantity.to_si()
+    if not tolerance > 0:
+        problems.append(Problem(path, value, "must be greater than 0"))
+        return None
+    return tolerance
+
+
+def _refined_axis(name, axes, groups, names, problems):
+    """The axis that ``refine.axis`` names, or None (problem appended)."""
+    if not isinstance(name, str) or name not in names:
+        problems.append(Problem("refine.axis", name, "not an axis of grid; axes: "
+                                                     + ", ".join(map(str, names))))
+        return None
+    if any(name in group for _, group in groups):
+        problems.append(Problem("refine.axis", name, "an axis of a zip group cannot be "
+                                                     "refined alone"))
+        return None
+    if name not in axes:
+        return None  # a malformed axis: its own problem is reported
+    axis = axes[name]
+    if axis.dimension == "name":
+        problems.append(Problem("refine.axis", name, "takes names: refine a numeric axis"))
+    elif axis.coords.size < 2:
+        problems.append(Problem("refine.axis", name, f"grid.{name} needs at least two values "
+                                                     "(the first bracket)"))
+    elif not np.all(np.diff(axis.coords) > 0):
+        problems.append(Problem("refine.axis", name, f"the values of grid.{name} must "
+                                                     "increase (they are scanned upward)"))
+    else:
+        return axis
+    return None
+
+
+def _refine(raw, axes, groups, names, problems):
+    """Check ``refine: {axis, tolerance}``; a :class:`Refine` or None (problems appended)."""
+    if not isinstance(raw, dict):
+        problems.append(Problem("refine", raw, "must be a mapping {axis: <an axis of grid>, "
+                                               "tolerance: <bracket width>}"))
+        return None
+    before = len(problems)
+    for key in raw:
+        if key not in REFINE_KEYS:
+            close = difflib.get_close_matches(str(key), REFINE_KEYS, n=1)
+            hint = f"; did you mean '{close[0]}'?" if close else ""
+            problems.append(Problem(join_path("refine", key), raw[key], f"unknown key{hint}"))
+    for key in REFINE_KEYS:
+        if key not in raw:
+            problems.append(Problem(join_path("refine", key), MISSING, "required"))
+    axis = _refined_axis(raw["axis"], axes, groups, names, problems) if "axis" in raw else None
+    tolerance = raw.get("tolerance")
+    if axis is not None and "tolerance" in raw:
+        tolerance = _tolerance(tolerance, axis, "refine.tolerance", problems)
+    elif "tolerance" in raw and not (_number(tolerance) or isinstance(tolerance, str)):
+        problems.append(Problem("refine.tolerance", tolerance,
+                                "must be a positive number or a quantity"))
+    if len(problems) > before or axis is None:
+        return None
+    return Refine(axis.name, tolerance)
 
 
 # --- cells ------------------------------------------------------------------------------------
@@ -437,7 +546,8 @@ def load_study(source, *, text=None, output=None, check_cells=True):
     ------
     FileProblems
         Unknown keys, axes and units, bad ranges, zip groups of unequal lengths, conflicting
-        axes and every cell scene problem, with dotted paths and the values given.
+        axes, a bad ``refine`` and every cell scene problem, with dotted paths and the values
+        given.
     """
     if isinstance(source, Study):
         return source
@@ -498,9 +608,14 @@ def load_study(source, *, text=None, output=None, check_cells=True):
             _conflicts(list(spec), problems)
     groups = _zip(raw.get("zip"), axes, list(spec) if isinstance(spec, dict) else [],
                   problems)
+    refine = None
+    if "refine" in raw:
+        refine = _refine(raw["refine"], axes, groups,
+                         list(spec) if isinstance(spec, dict) else [], problems)
     study = Study(name=name.strip(), title=str(raw.get("title", name)).strip(), scene=scene,
                   dims=_dims(axes, groups), output=Path(out), text=text, source=src,
-                  base_dir=base_dir, description=str(raw.get("description", "")).strip())
+                  base_dir=base_dir, description=str(raw.get("description", "")).strip(),
+                  refine=refine)
     if check_cells and scene:
         # with the axes that are well formed, so that every problem shows at once
         problems += cell_problems(study)
