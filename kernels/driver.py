@@ -141,15 +141,8 @@ def _handle(k, mode, t, q, ctx, par, rec, body, contact, v_tol, zeno_dt):
     flags = corner_impact(q, sc, e_x, e_y, mu_edge_s, mu_edge_k, b, h, i2)
     if flags & IMPACT_PAINLEVE:
         return mode, s, sigma, PAINLEVE, flags
-    Vy = corner_velocity(q, sc, b, h)[1]
-    if Vy > v_tol:                                      # it bounces: still airborne
+    if corner_velocity(q, sc, b, h)[1] > v_tol:         # it bounces: still airborne
         return ROTATION_JUMP, 0.0, 0.0, OK, flags
-    # Zeno closure of a bounce that would land again within zeno_dt: the normal impulse
-    # at the corner that stops it (it only takes energy out, PHYSICS 2.2)
-    rcx = corner(sc, q[ITHETA], b, h)[0]
-    P = -Vy / (1.0 + rcx * rcx / i2)
-    q[IV] += P
-    q[IOMEGA] += rcx * P / i2
     m, s2, sg2 = select_corner(q, sc, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol)
     return m, s2, sg2, OK, flags
 

@@ -52,10 +52,16 @@ def start_slide(sigma, mu_k, b, h):
 
 @jit
 def select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol):
-    """Mode of a body whose corner s touches the floor (gap 0)."""
+    """Mode of a body whose corner s touches the floor (gap 0).
+
+    A corner velocity below v_tol (a bounce or a slip that would end within zeno_dt) is
+    closed by the plastic impulse that stops it (``stop_corner``), so the state satisfies
+    the contact constraints of the mode it enters without gaining energy.
+    """
     Vx, Vy = corner_velocity(q, s, b, h)
     if Vy > v_tol:
         return ROTATION_JUMP, s, 0.0
+    stop_corner(q, s, b, h, i2, abs(Vx) <= v_tol)
     if abs(Vx) > v_tol:
         sigma = math.copysign(1.0, Vx)
         N = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, g_e, b, h, i2,
@@ -69,6 +75,28 @@ def select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol):
             return ROTATION, s, 0.0
         return SLIDE_ROTATION, s, -math.copysign(1.0, F)
     return _unstick(q, s, -math.copysign(1.0, F), a_x, g_e, b, h, i2, mu_edge_k)
+
+
+@jit
+def stop_corner(q, s, b, h, i2, tangential):
+    """Apply at corner s the impulse P that stops its normal velocity (and, if tangential,
+    its tangential one too): V_c+ = V_c- + W P with the corner's inverse mass matrix W (per
+    unit mass).  The change of energy, P.V_c-/2, is never positive."""
+    rcx, rcy = corner(s, q[ITHETA], b, h)
+    Vx, Vy = corner_velocity(q, s, b, h)
+    wxx = 1.0 + rcy * rcy / i2
+    wxy = -rcx * rcy / i2
+    wyy = 1.0 + rcx * rcx / i2
+    if tangential:
+        det = wxx * wyy - wxy * wxy
+        Px = -(wyy * Vx - wxy * Vy) / det
+        Py = -(wxx * Vy - wxy * Vx) / det
+    else:
+        Px = 0.0
+        Py = -Vy / wyy
+    q[IU] += Px
+    q[IV] += Py
+    q[IOMEGA] += (rcx * Py - rcy * Px) / i2
 
 
 @jit
@@ -115,11 +143,15 @@ def select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol, 
         thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, b, h, i2)[0]
         restoring = thdd * omega < 0.0
         if not (restoring and 2.0 * abs(omega) < zeno_dt * abs(thdd)):
-            return select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol)
-    # face contact: the remaining tangential velocity of the base decides
-    slip = corner_velocity(q, 1.0, b, h)[0]
+            m, s2, sigma = select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k,
+                                         v_tol)
+            if s * q[IOMEGA] < 0.0:               # the closure left it rocking about s
+                return m, s2, sigma
+    # face contact: normal impulses under the base stop omega and v and leave u, which is
+    # then the slip velocity of the base
     q[IOMEGA] = 0.0
     q[IV] = 0.0
+    slip = q[IU]
     if abs(slip) > v_tol:
         q[IU] = slip
         return start_slide(math.copysign(1.0, slip), mu_k, b, h)
