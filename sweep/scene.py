@@ -19,7 +19,7 @@ def main(argv=None):
     with reported_problems(args.scene):
         resolved = resolve_scene(load_scene(args.scene))
     from kernels import run_scene
-    from .simulate import to_json_dict
+    from .one_scene import to_json_dict
     want_history = bool(args.plot or args.animate or args.history)
     result = run_scene(resolved, history=want_history)
     if want_history:
