@@ -469,7 +469,10 @@ def run_scene(par, rec, res, log, hist):
                 K[0, k] = K[6, k]
             if t >= t_lim:
                 rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, K[0])
-            event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gold)
+                event_values(mode, t, q, ctx, par, rec, body, mu_edge_s, theta_over, gold)
+            else:                                       # the last sample was the step's end
+                for k in range(ne):
+                    gold[k] = gtmp[k]
             continue
 
         # --- the event: impact laws and the next mode ------------------------------------
