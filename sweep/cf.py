@@ -9,13 +9,14 @@ study's dimensions; :func:`encoding` chooses how they are stored (zlib level 1, 
 xarray is imported only when a Dataset is built.
 """
 import datetime
+import math
 from collections import namedtuple
 
 import numpy as np
 
 from kernels import codes
 
-from . import __version__, refine
+from . import __version__, grid, refine
 
 CONVENTIONS = "CF-1.11"
 PACKAGE = "rigid-block-sweeps"
@@ -128,18 +129,50 @@ def variable_attrs(name, table=None, axis=None):
     return attrs
 
 
-def describe_excitation(ground):
-    """One line naming the horizontal excitation of the base scene (the ``sweep_law``)."""
+def _sweep_rate(f0, f1, duration, law):
+    """'down at 40 s per octave', 'up at 0.05 Hz/s', or '' when the numbers are not plain."""
+    try:
+        f0, f1, duration = float(f0), float(f1), float(duration)
+    except (TypeError, ValueError):
+        return ""
+    direction = "down" if f1 < f0 else "up"
+    if law == "log":
+        octaves = abs(math.log2(f1 / f0))
+        return f"{direction} at {duration / octaves:.4g} s per octave" if octaves else direction
+    return f"{direction} at {abs(f1 - f0) / duration:.4g} Hz/s"
+
+
+def describe_excitation(ground, varied=()):
+    """One line naming the horizontal excitation of the base scene (the ``sweep_law``).
+
+    A sweep is described by its law, phase, held amplitude, direction and rate; ``varied``
+    names the study axes that change the horizontal excitation from cell to cell.
+    """
     kind = ground.get("kind", "none")
     if kind == "sweep":
-        return (f"{ground.get('law', 'log')} frequency sweep holding the "
+        law = ground.get("law", "log")
+        phase = ("psi = 2 pi f0 (exp(k t) - 1)/k, k = ln(f1/f0)/T" if law == "log"
+                 else "psi = 2 pi (f0 t + (f1 - f0) t^2/(2 T))")
+        line = (f"{law} frequency sweep ({phase}) holding the "
                 f"{ground.get('hold', 'acceleration')} amplitude, {ground.get('f_start')} to "
-                f"{ground.get('f_stop')} Hz over {ground.get('duration')} s")
-    if kind == "sine":
-        return "none (sine at a constant frequency)"
-    if kind == "record":
-        return f"none (record {ground.get('name') or ground.get('path')})"
-    return f"none ({kind})"
+                f"{ground.get('f_stop')} Hz over {ground.get('duration')} s, "
+                + _sweep_rate(ground.get("f_start"), ground.get("f_stop"),
+                              ground.get("duration"), law))
+    elif kind == "sine":
+        line = "none (sine at a constant frequency)"
+    elif kind == "record":
+        line = f"none (record {ground.get('name') or ground.get('path')})"
+    else:
+        line = f"none ({kind})"
+    if varied:
+        line += f"; per cell, the study axes {', '.join(varied)} change it"
+    return line
+
+
+def _horizontal_axes(study):
+    return tuple(axis.name for axis in study.axes
+                 if any(path.startswith("excitation.horizontal.")
+                        for path in grid.targets(axis.name)))
 
 
 def global_attrs(study, history=None):
@@ -154,7 +187,7 @@ def global_attrs(study, history=None):
         "study_file": study.source or "",
         "source": f"{PACKAGE} {__version__}",
         "version": __version__,
-        "sweep_law": describe_excitation(study.excitation),
+        "sweep_law": describe_excitation(study.excitation, _horizontal_axes(study)),
         "history": f"{now} {line} - {PACKAGE} {__version__}",
         "date_created": now,
     }

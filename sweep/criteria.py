@@ -96,7 +96,8 @@ def housner_overturn_time(B, H, a, i_g=None, g=G):
     cosh(p t_o) = 1 + 1/(2 x (x - 1)) with x = a/(g alpha) and p = sqrt(g r/(i^2 + r^2)): after the
     acceleration stops the body still escapes (small-alpha, linearized).  The printed exponent
     sqrt(g alpha/(i^2 + r^2)) has the dimension 1/sqrt(m s^2); p is the form the derivation
-    gives and agrees with PHYSICS.md A8.  NaN when a <= g alpha (the body never overturns).
+    gives (the linearized escape condition e^(p t_o) = x/(x - 1) of PHYSICS.md A8, whose
+    cosh is the right-hand side above).  NaN when a <= g alpha (the body never overturns).
     """
     c = body_constants(B, H, i_g, g)
     x = np.asarray(a, float) / (g * c.alpha)
@@ -179,12 +180,19 @@ def ishiyama_velocity_approx(B, H):
 
 
 def ishiyama_displacement(B, H, i_g=None, g=G):
-    """Lower limit d_o = v_o^2/a_o of the peak floor displacement to overturn, Eq. (18) [m]."""
+    """Lower limit d_o = v_o^2/a_o of the peak floor displacement to overturn, Eq. (18) [m].
+
+    The relation behind it is that of a sinusoid, v^2 = a d (the transcription prints
+    v_o^2 = a_o^2 d_o, which is not homogeneous in units).
+    """
     return ishiyama_velocity(B, H, i_g, g) ** 2 / ishiyama_acceleration(B, H, g)
 
 
 def ishiyama_displacement_approx(B):
-    """Slender-body rule d_o ~ B/10, Eq. (19) [m]."""
+    """Slender-body rule d_o ~ B/10, Eq. (19) [m].
+
+    The small-alpha limit of Eq. (18) is d_o = (0.32/3) B = 0.1067 B, in any units.
+    """
     return np.asarray(B, float) / 10.0
 
 

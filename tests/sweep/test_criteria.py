@@ -140,3 +140,47 @@ def test_point_p_in_normalized_plane():
     # a sinusoid of amplitude a_o at the period T_c sits at P = (1, 0.4)
     x, y = criteria.normalized_plane(3.26888, 1 / 0.37332, 0.1, 0.3)
     assert (round(float(x), 5), round(float(y), 5)) == (1.0, 0.4)
+
+
+@pytest.mark.parametrize("x", [1.0342, 1.5, 2.0226, 4.0])
+def test_eq4_is_the_linearized_escape_condition(x):
+    # linearized rocking under a for t_o, then free: the body escapes iff
+    # e^(p t_o) >= x/(x - 1), x = a/(g alpha) (PHYSICS.md A8); Eq. (4) is its cosh form
+    c = criteria.body_constants(0.1, 0.3)
+    t_o = criteria.housner_overturn_time(0.1, 0.3, x * 9.80665 * c.alpha)
+    assert float(c.p * t_o) == pytest.approx(math.log(x / (x - 1.0)), rel=1e-12)
+
+
+def test_slender_limits_of_eqs_17_19_21():
+    # alpha -> 0 (b/h = 1e-4): v_o -> 0.4 B sqrt(2g/(3H)), d_o -> (0.32/3) B,
+    # T_c -> 0.8 pi sqrt(2H/(3g)), derived by hand from Eqs. (11), (14), (18), (20)
+    g = 9.80665
+    for H in (0.3, 1.0, 3.0):
+        B = 1e-4 * H
+        assert float(criteria.ishiyama_velocity(B, H)) == pytest.approx(
+            0.4 * B * math.sqrt(2 * g / (3 * H)), rel=1e-6)
+        assert float(criteria.ishiyama_displacement(B, H)) == pytest.approx(0.32 / 3 * B,
+                                                                            rel=1e-6)
+        assert float(criteria.critical_period(B, H)) == pytest.approx(
+            0.8 * math.pi * math.sqrt(2 * H / (3 * g)), rel=1e-6)
+    # in cm and s the coefficients are the paper's 10 (Eq. 17) and 1/16 (Eq. 21)
+    assert 0.4 * math.sqrt(2 * 980.665 / 3) == pytest.approx(10, rel=0.03)
+    assert 0.8 * math.pi * math.sqrt(2 / (3 * 980.665)) == pytest.approx(1 / 16, rel=0.05)
+
+
+def test_mononobe_matches_rocking_threshold_with_vertical():
+    # PHYSICS.md 6: rocking starts at a_x = (b/h)(g + a_y); with a_y = k_y g upward the
+    # combined coefficient K' = k_x/(1 + k_y) equals b/h there, K (a_y = -k_y g) likewise
+    b_over_h, k_y = 0.25, 0.3
+    _, K_prime = criteria.mononobe_coefficients(b_over_h * (1 + k_y), k_y)
+    K, _ = criteria.mononobe_coefficients(b_over_h * (1 - k_y), k_y)
+    assert (float(K_prime), float(K)) == pytest.approx((b_over_h, b_over_h), rel=1e-12)
+
+
+def test_limits_scale_with_size():
+    # PHYSICS.md A1 similarity: lengths x lam -> a_o kept, v_o and T_c x sqrt(lam), d_o x lam
+    small, big = criteria.ishiyama_limits(0.1, 0.3), criteria.ishiyama_limits(0.4, 1.2)
+    assert float(big.a_o) == pytest.approx(float(small.a_o), rel=1e-12)
+    assert float(big.v_o) == pytest.approx(2 * float(small.v_o), rel=1e-12)
+    assert float(big.T_c) == pytest.approx(2 * float(small.T_c), rel=1e-12)
+    assert float(big.d_o) == pytest.approx(4 * float(small.d_o), rel=1e-12)

@@ -1,0 +1,302 @@
+"""Figs 8-11 of Ishiyama (1982): where frequency sweeps overturn, in the normalized plane.
+
+Abscissa: the normalized velocity, velocity amplitude / v_H (the single-shock velocity of
+Eq. 9); ordinate: the normalized acceleration, acceleration amplitude / ((B/H) g) (West,
+Eq. 1), as the paper draws them, with West's line a = 1, the single-shock line v = 1 and the
+paper's point P (v = 0.4, a = 1).  On these log axes a sweep runs along a straight line:
+horizontal at constant acceleration, vertical at constant velocity, of slope 2 at constant
+displacement.  A figure takes the datasets of one or several sweep studies
+(``python -m sweep.plot A.nc V.nc D.nc --figure fig09 -o fig09.png``).  An overturning after
+the excitation stopped is not a result of the sweep: it is left out and counted.
+"""
+import itertools
+from collections import namedtuple
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+from . import classify, criteria, units  # noqa: E402
+from .plot_limits import plain_log_axis  # noqa: E402
+from .schema import HOLD_DIMENSIONS  # noqa: E402
+
+HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three symbols
+    "acceleration": {"marker": "o", "color": "tab:red"},
+    "velocity": {"marker": "^", "color": "tab:blue"},
+    "displacement": {"marker": "s", "color": "tab:green"},
+}
+CRITERIA_STYLE = {"west": {"color": "k", "ls": "--", "lw": 1.1},
+                  "shock": {"color": "0.35", "ls": "-", "lw": 1.0}}
+V_LIMITS, A_LIMITS = (0.1, 5.0), (0.15, 6.0)  # normalized velocity and acceleration shown
+POINT_P = (criteria.V_FACTOR, 1.0)  # (v, a) of the paper's point P
+KIND_STYLE = {  # the paper's boundaries of Fig. 11 and the other kinds of the classifier
+    "inverse_phase": {"marker": "o", "color": "tab:red", "ls": "-",
+                      "label": "a: from inverse phase rocking"},
+    "subharmonic": {"marker": "D", "color": "tab:purple", "ls": "--",
+                    "label": "b: from subharmonic rocking"},
+    "in_phase": {"marker": "^", "color": "tab:blue", "ls": "-.",
+                 "label": "c: from in phase rocking"},
+    "irregular": {"marker": "x", "color": "0.45", "ls": "none",
+                  "label": "from irregular rocking"},
+}
+# kinds drawn as boundary lines, and the sweeps they come from (Fig. 11)
+BOUNDARIES = {"inverse_phase": ("acceleration",), "subharmonic": tuple(HOLD_STYLE),
+              "in_phase": ("velocity", "displacement")}
+
+SweepCells = namedtuple("SweepCells", "hold down start end point late failed series labels "
+                                      "body tilt")
+SweepCells.__doc__ = """The cells of one sweep study in the normalized plane.
+
+hold : 'acceleration', 'velocity' or 'displacement'; down : True when swept down in frequency;
+start, end : ndarray, shape (n, 2), (v, a) where each cell's sweep starts and where it ends
+(at the overturning, or at the end of the sweep; NaN for a failed cell); point : ndarray,
+shape (n, 2), (v, a) at overturning during the sweep, NaN otherwise; late : bool array,
+overturned after the excitation stopped; failed : bool array; series : int array, the
+combination of the study's other axes (not ``amplitude``) of each cell; labels : one text per
+series; body : text naming the body (or bodies); tilt : initial tilt / alpha of the cells."""
+
+
+# --- the cells of a dataset -------------------------------------------------------------------
+
+def plane_point(ground, body, f):
+    """(v, a): the sweep ``ground`` (resolved, SI) at frequency ``f`` in the normalized plane."""
+    held = units.Quantity(ground["amplitude"], "", HOLD_DIMENSIONS[ground["hold"]])
+    a, v = criteria.normalized_plane(units.acceleration_amplitude(held, f), f, body["B"],
+                                     body["H"], body["i_g"])
+    return float(v), float(a)
+
+
+def value_text(name, value):
+    """'amplitude = 1.1 west', 'vertical_amplitude = 0.3 g': an axis value as written."""
+    try:
+        value = units.parse_quantity(value, units.DIMENSIONS)
+    except ValueError:
+        pass  # a name
+    return f"{name} = {value}"
+
+
+def _series(study):
+    """Index of the combination of the study's dimensions other than ``amplitude`` of each
+    cell (in cell order), and one label per combination."""
+    others = [k for k, dim in enumerate(study.dims)
+              if all(axis.name != "amplitude" for axis in dim.axes)]
+    positions = np.indices(study.shape).reshape(len(study.dims), -1)[others]
+    sizes = [study.dims[k].size for k in others]
+    series = (np.ravel_multi_index(positions, sizes) if others
+              else np.zeros(positions.shape[1], dtype=int))
+    labels = [", ".join(value_text(axis.name, axis.values[i])
+                        for k, i in zip(others, combo) for axis in study.dims[k].axes)
+              for combo in itertools.product(*(range(n) for n in sizes))]
+    return series, labels
+
+
+def _body_text(bodies):
+    """'B x H = 5 x 15 cm (b/h = 1/3)' or 'several bodies'."""
+    if len(bodies) > 1:
+        return "several bodies"
+    B, H = next(iter(bodies))
+    return f"B × H = {100 * B:.3g} × {100 * H:.3g} cm (b/h = 1/{H / B:.3g})"
+
+
+def sweep_cells(ds):
+    """The cells of a sweep study's dataset in the normalized plane (a ``SweepCells``)."""
+    study = classify.study_of(ds)
+    n = int(ds["outcome"].size)
+    f_over = ds["f_at_overturn"].values.ravel()
+    v_over, a_over = (ds[f"{q}_norm_at_overturn"].values.ravel() for q in "va")
+    overturned = ds["overturned"].values.ravel() == 1
+    failed = ds["outcome"].values.ravel() == -1
+    t_overturn = ds["t_overturn"].values.ravel()
+    start, end = np.full((n, 2), np.nan), np.full((n, 2), np.nan)
+    late = np.zeros(n, dtype=bool)
+    bodies, tilts, hold, down = set(), set(), None, None
+    for i in range(n):
+        scene = classify.resolved_cell(study, i)
+        ground, body = scene["excitation"]["horizontal"], scene["body"]
+        if ground["kind"] != "sweep":
+            raise ValueError(f"the horizontal excitation of {study.name} is not a sweep")
+        hold, down = ground["hold"], ground["f_stop"] < ground["f_start"]
+        bodies.add((body["B"], body["H"]))
+        tilts.add(scene["initial"]["theta"] / criteria.body_constants(body["B"],
+                                                                      body["H"]).alpha)
+        late[i] = overturned[i] and t_overturn[i] > classify.excitation_end(scene)
+        start[i] = plane_point(ground, body, ground["f_start"])
+        if not failed[i]:
+            on_time = overturned[i] and not late[i]
+            end[i] = plane_point(ground, body, f_over[i] if on_time else ground["f_stop"])
+    during = overturned & ~late
+    point = np.where(during[:, None], np.column_stack([v_over, a_over]), np.nan)
+    series, labels = _series(study)
+    return SweepCells(hold, down, start, end, point, late, failed, series, labels,
+                      _body_text(bodies), float(max(tilts, key=abs)))
+
+
+def lowest_points(cells):
+    """(v, a) of the overturning with the lowest normalized velocity and of the one with the
+    lowest normalized acceleration (NaN without overturning)."""
+    ok = ~np.isnan(cells.point[:, 0])
+    if not np.any(ok):
+        return (np.nan, np.nan), (np.nan, np.nan)
+    pts = cells.point[ok]
+    return tuple(pts[np.argmin(pts[:, 0])]), tuple(pts[np.argmin(pts[:, 1])])
+
+
+# --- drawing ----------------------------------------------------------------------------------
+
+def draw_criteria(ax):
+    """West's line a = 1 (Eq. 1), the single-shock line v = 1 (Eq. 9) and point P."""
+    ax.axhline(1.0, **CRITERIA_STYLE["west"])
+    ax.axvline(1.0, **CRITERIA_STYLE["shock"])
+    ax.plot(*POINT_P, marker="*", ms=15, color="gold", mec="k", zorder=5, ls="none")
+    ax.annotate("P", POINT_P, xytext=(-14, 6), textcoords="offset points", fontsize=12,
+                fontweight="bold")
+    return [Line2D([], [], **CRITERIA_STYLE["west"], label="West, Eq. (1): a = (B/H) g"),
+            Line2D([], [], **CRITERIA_STYLE["shock"], label="single shock, Eq. (9): v = v_H"),
+            Line2D([], [], marker="*", ms=12, color="gold", mec="k", ls="none",
+                   label="P (v = 0.4 v_H, a = (B/H) g)")]
+
+
+def plane_axes(ax):
+    """Log axes of the normalized plane with plain tick labels."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(*V_LIMITS)
+    ax.set_ylim(*A_LIMITS)
+    plain_log_axis(ax.xaxis)
+    plain_log_axis(ax.yaxis)
+    ax.set_xlabel("normalized velocity: velocity amplitude / v_H")
+    ax.set_ylabel("normalized acceleration: acceleration amplitude / ((B/H) g)")
+    ax.grid(True, which="major", color="0.9", lw=0.6)
+
+
+def _sweep_label(cells, mask):
+    """'constant velocity, swept up: 16 of 21 overturned, ...; lowest v 0.533 (a = 1.12)'."""
+    n = int(np.sum(mask))
+    over = int(np.sum(mask & ~np.isnan(cells.point[:, 0])))
+    text = (f"constant {cells.hold}, swept {'down' if cells.down else 'up'}: "
+            f"{over} of {n} overturned")
+    for count, what in ((np.sum(mask & cells.late), "after the sweep"),
+                        (np.sum(mask & cells.failed), "failed")):
+        if count:
+            text += f", {int(count)} {what}"
+    (v, a), _ = lowest_points(cells._replace(point=np.where(mask[:, None], cells.point, np.nan)))
+    return text + (f"; lowest v {v:.3g} (a = {a:.3g})" if over else "")
+
+
+def draw_sweeps(ax, cells):
+    """Paths and overturning points of one study; one colour per series when it has several.
+
+    Returns the legend handles.
+    """
+    style = HOLD_STYLE[cells.hold]
+    handles = []
+    several = len(cells.labels) > 1
+    colours = plt.cm.tab20(np.arange(len(cells.labels)) % 20)
+    for k, label in enumerate(cells.labels):
+        mask = cells.series == k
+        colour = colours[k] if several else style["color"]
+        if not several:  # paths only for a single series: many would hide the points
+            for (v0, a0), (v1, a1) in zip(cells.start[mask], cells.end[mask]):
+                ax.plot([v0, v1], [a0, a1], color=colour, lw=0.7, alpha=0.35)
+        ax.plot(*cells.point[mask].T, ls="none", marker=style["marker"], color=colour,
+                mec="k", mew=0.5, ms=6)
+        text = _sweep_label(cells, mask)
+        handles.append(Line2D([], [], ls="none", marker=style["marker"], color=colour,
+                              mec="k", mew=0.5,
+                              label=f"{text}; {label}" if several else text))
+    if not several:
+        handles.append(Line2D([], [], color=style["color"], lw=0.7, alpha=0.5,
+                              label=f"paths of the constant-{cells.hold} sweeps"))
+    return handles
+
+
+def _title(label, cells_list, what):
+    bodies = {c.body for c in cells_list}
+    body = bodies.pop() if len(bodies) == 1 else "several bodies"
+    tilts = {c.tilt for c in cells_list}
+    tilt = f", initial tilt {tilts.pop():.2g} α" if len(tilts) == 1 and 0 not in tilts else ""
+    return f"{label + ': ' if label else ''}{what}, {body}{tilt}"
+
+
+def _datasets(data):
+    """A list of datasets from one Dataset or a sequence of them."""
+    return [data] if hasattr(data, "data_vars") else list(data)
+
+
+def figure_plane(data, label=None):
+    """Figs 8-10: overturning points of sweep studies in the normalized plane.
+
+    Parameters
+    ----------
+    data : xarray.Dataset or sequence of them
+        Datasets of sweep studies (one per kind of sweep, or with other axes as series).
+    label : str, optional
+        The paper's figure, for the title ('Fig. 9').
+    """
+    datasets = _datasets(data)
+    cells_list = [sweep_cells(ds) for ds in datasets]
+    fig, ax = plt.subplots(figsize=(8.4, 7.6), layout="constrained")
+    plane_axes(ax)
+    handles = []
+    for cells in cells_list:
+        handles += draw_sweeps(ax, cells)
+    handles += draw_criteria(ax)
+    fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=8,
+               frameon=False)
+    title = _title(label, cells_list, "overturning in frequency sweeps")
+    if len(datasets) == 1:  # one study: its own title says what varies
+        title += f"\n{datasets[0].attrs.get('title', '')}"
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
+def figure_boundaries(data, label=None):
+    """Fig. 11: boundaries of overturning drawn through our overturning points by kind.
+
+    Each overturned cell is simulated again and classified by the rocking before it
+    (``sweep.classify``): curve a through the inverse-phase overturnings of the
+    constant-acceleration sweeps, b through the subharmonic ones, c through the in-phase
+    overturnings of the constant velocity and displacement sweeps; one line per study, dotted
+    for a body released with an initial tilt (the paper's dotted curve).
+    """
+    fig, ax = plt.subplots(figsize=(8.4, 7.6), layout="constrained")
+    plane_axes(ax)
+    counts = dict.fromkeys(KIND_STYLE, 0)
+    cells_list = []
+    for ds in _datasets(data):
+        cells = sweep_cells(ds)
+        cells_list.append(cells)
+        kinds = {i: r.kind for i, r in classify.classify_dataset(ds).items()}
+        for kind, style in KIND_STYLE.items():
+            ids = np.array(sorted(i for i, k in kinds.items() if k == kind), dtype=int)
+            counts[kind] += ids.size
+            if ids.size == 0:
+                continue
+            pts = cells.point[ids]
+            ax.plot(*pts.T, ls="none", marker=style["marker"], color=style["color"],
+                    mec="k" if style["marker"] != "x" else None, mew=0.5, ms=5)
+            if cells.hold in BOUNDARIES.get(kind, ()) and ids.size > 1:
+                along = 1 if cells.hold == "acceleration" else 0  # the quantity swept over
+                pts = pts[np.argsort(pts[:, along])]
+                ax.plot(*pts.T, color=style["color"], lw=1.3,
+                        ls=":" if cells.tilt else style["ls"])
+    handles = [Line2D([], [], marker=s["marker"], color=s["color"],
+                      ls=s["ls"] if k in BOUNDARIES else "none",
+                      mec="k" if s["marker"] != "x" else None, mew=0.5,
+                      label=f"{s['label']} (n = {counts[k]})")
+               for k, s in KIND_STYLE.items()]
+    if any(c.tilt for c in cells_list):
+        handles.append(Line2D([], [], color="k", ls=":", lw=1.3,
+                              label="dotted: body released with an initial tilt"))
+    handles += draw_criteria(ax)
+    sources = "; ".join(sorted({f"{c.body}{f', tilt {c.tilt:.2g} α' if c.tilt else ''}"
+                                for c in cells_list}))
+    handles.append(Line2D([], [], ls="none", label=f"sweeps of: {sources}"))
+    fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=8,
+               frameon=False)
+    ax.set_title(f"{label + ': ' if label else ''}boundaries of overturning, by the rocking "
+                 "before it", fontsize=10)
+    return fig

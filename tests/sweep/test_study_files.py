@@ -1,0 +1,43 @@
+"""Every file in studies/ still validates, so that none rots as the schemas change.
+
+A file with ``grid`` is a study (checked with every cell's scene, as ``sweep.run`` does before
+running), one with ``bodies`` a bodies file of ``sweep.estimate``, any other YAML file a scene.
+"""
+from pathlib import Path
+
+import pytest
+import yaml
+
+from sweep.estimate import load_bodies
+from sweep.schema import load_scene
+from sweep.study import load_study
+
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
+FILES = sorted(STUDIES.glob("*.yaml"))
+
+
+def kind_of(path):
+    raw = yaml.safe_load(path.read_text())
+    if isinstance(raw, dict) and "grid" in raw:
+        return "study"
+    if isinstance(raw, dict) and "bodies" in raw:
+        return "bodies"
+    return "scene"
+
+
+def test_studies_folder_has_files_of_every_kind():
+    assert {kind_of(p) for p in FILES} == {"study", "bodies", "scene"}
+
+
+@pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])
+def test_file_validates(path):
+    kind = kind_of(path)
+    if kind == "study":
+        study = load_study(path)  # raises FileProblems listing every problem
+        assert study.n_cells >= 1
+        assert study.output.suffix == ".nc"
+    elif kind == "bodies":
+        _, bodies = load_bodies(path)
+        assert bodies
+    else:
+        assert load_scene(path).body.B.value > 0
