@@ -132,7 +132,9 @@ def bouncing_table(quick):
 def ensemble_table(quick):
     n = 50 if quick else 1000
     phases = hc.ensemble_phases(n, seed=2)
-    settings = [("rtol 1e-9", hc.tolerance(1e-9)), ("rtol 1e-6", hc.tolerance(1e-6))]
+    settings = [("rtol 1e-9", hc.tolerance(1e-9)), ("rtol 1e-6", hc.tolerance(1e-6)),
+                ("rtol 1e-6, zeno_dt 1e-4 (map settings)",
+                 {**hc.tolerance(1e-6), "zeno_dt": 1e-4})]
     if not quick:
         settings.append(("fixed dt 1 ms", {"method": "fixed", "dt": 1e-3}))
     runs = [(name, hc.phase_ensemble(phases, **solver)) for name, solver in settings]
