@@ -326,6 +326,7 @@ def run_scene(par, rec, res, log, hist):
     gwork = np.zeros(MAX_EVENTS)
 
     status = OK
+    err_old = 1e-4
     t = 0.0
     nlog = 0
     nh = 0
@@ -384,11 +385,12 @@ def run_scene(par, rec, res, log, hist):
             status = NON_FINITE
             break
         if method == ADAPTIVE:
-            dt_next = next_step_size(dt, err, ERROR_ORDER)
+            dt_next = next_step_size(dt, err, err_old, ERROR_ORDER)
             if err > 1.0:
                 if dt_next < 1e-14 * max(1.0, t):
                     status = BUDGET_EXHAUSTED
                 continue
+            err_old = max(err, 1e-4)
 
         # --- events: the earliest zero of any event function inside this step ----------
         ne = n_events(mode)

@@ -16,6 +16,7 @@ from .tableaus import DP_A, DP_B, DP_C, DP_E, DP_P, RK4_A, RK4_B, RK4_C
 SAFETY = 0.9          # step-size controller (Hairer, Norsett & Wanner II.4)
 MIN_FACTOR = 0.2      # never shrink the step by more than this factor at once
 MAX_FACTOR = 10.0     # never grow it by more than this factor at once
+PI_BETA = 0.04        # weight of the last accepted error (PI control)
 
 
 @jit
@@ -85,8 +86,14 @@ def dense(method, n, z, z_new, K, h, x, out):
 
 
 @jit
-def next_step_size(h, err, order):
-    """Step-size proposal after a step with error norm err (controller of II.4)."""
+def next_step_size(h, err, err_old, order):
+    """Step-size proposal after a step with error norm err; err_old is that of the last
+    accepted step.  Accepted steps take the PI controller of Hairer, Norsett & Wanner
+    (II.4, DOPRI5 with beta = 0.04), which damps the alternation of accepted and rejected
+    steps that the plain controller shows; a rejected step only shrinks."""
     if err == 0.0:
         return h * MAX_FACTOR
-    return h * min(MAX_FACTOR, max(MIN_FACTOR, SAFETY * err ** (-1.0 / order)))
+    if err > 1.0:
+        return h * max(MIN_FACTOR, SAFETY * err ** (-1.0 / order))
+    fac = SAFETY * err ** (PI_BETA * 0.75 - 1.0 / order) * err_old ** PI_BETA
+    return h * min(MAX_FACTOR, max(MIN_FACTOR, fac))
