@@ -46,7 +46,6 @@ from .transitions import leave_rest, select_corner, select_face, start_slide
 # turning point, theta and the gaps are monotone in the step and its end suffices.
 SAMPLES = (1.0 / 3.0, 2.0 / 3.0, 1.0)
 END_ONLY = (1.0, 1.0, 1.0)
-ERROR_ORDER = 5          # DP5(4): the error estimate scales like h^5
 
 
 @jit
@@ -385,7 +384,7 @@ def run_scene(par, rec, res, log, hist):
             status = NON_FINITE
             break
         if method == ADAPTIVE:
-            dt_next = next_step_size(dt, err, err_old, ERROR_ORDER)
+            dt_next = next_step_size(dt, err, err_old)
             if err > 1.0:
                 if dt_next < 1e-14 * max(1.0, t):
                     status = BUDGET_EXHAUSTED

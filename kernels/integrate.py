@@ -11,7 +11,7 @@ import math
 from ._jit import jit
 from .codes import ADAPTIVE
 from .motion import rhs
-from .tableaus import DP_A, DP_B, DP_C, DP_E, DP_P, RK4_A, RK4_B, RK4_C
+from .tableaus import DP_A, DP_B, DP_C, DP_E, DP_ORDER, DP_P, RK4_A, RK4_B, RK4_C
 
 SAFETY = 0.9          # step-size controller (Hairer, Norsett & Wanner II.4)
 MIN_FACTOR = 0.2      # never shrink the step by more than this factor at once
@@ -86,7 +86,7 @@ def dense(method, n, z, z_new, K, h, x, out):
 
 
 @jit
-def next_step_size(h, err, err_old, order):
+def next_step_size(h, err, err_old):
     """Step-size proposal after a step with error norm err; err_old is that of the last
     accepted step.  Accepted steps take the PI controller of Hairer, Norsett & Wanner
     (II.4, DOPRI5 with beta = 0.04), which damps the alternation of accepted and rejected
@@ -94,6 +94,6 @@ def next_step_size(h, err, err_old, order):
     if err == 0.0:
         return h * MAX_FACTOR
     if err > 1.0:
-        return h * max(MIN_FACTOR, SAFETY * err ** (-1.0 / order))
-    fac = SAFETY * err ** (PI_BETA * 0.75 - 1.0 / order) * err_old ** PI_BETA
+        return h * max(MIN_FACTOR, SAFETY * err ** (-1.0 / DP_ORDER))
+    fac = SAFETY * err ** (PI_BETA * 0.75 - 1.0 / DP_ORDER) * err_old ** PI_BETA
     return h * min(MAX_FACTOR, max(MIN_FACTOR, fac))

@@ -7,9 +7,7 @@ cubic Hermite interpolant built from the two end slopes.
 """
 import numpy as np
 
-DP_ORDER = 5
-DP_ERROR_ORDER = 4
-DP_STAGES = 6
+DP_ORDER = 5          # the embedded error estimate scales like h^DP_ORDER
 DP_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
 DP_A = np.array([
     [0.0, 0.0, 0.0, 0.0, 0.0],
