@@ -19,3 +19,12 @@ def jit(func=None, **overrides):
     if func is None:
         return lambda f: numba.njit(**options)(f)
     return numba.njit(**options)(func)
+
+
+def jit_for(solver, algorithm, f):
+    """Compile ``solver``, a closure of ``algorithm`` over the compiled function f that it
+    calls, under the name ``<algorithm>_<f>``.  (A compiled function passed as an argument
+    would make every caller uncacheable; bound in a closure, each solver is cached under its
+    own name.)"""
+    solver.__name__ = solver.__qualname__ = f"{algorithm}_{f.__name__.lstrip('_')}"
+    return jit(solver)

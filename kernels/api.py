@@ -189,12 +189,11 @@ def _nan_to_none(x):
 def run_scene(scene, history=False, max_log=100_000):
     """Simulate one resolved scene (dict in SI units) and return a ``SceneResult``."""
     from .driver import run_scene as _run_scene
-    from .impact import SLIPPED
     records = []
     row = scene_row(scene, records)
     rec = record_buffer(records)
     res = np.zeros(codes.N_RES)
-    log = np.zeros((max_log, 3))
+    log = np.zeros((max_log, codes.N_LOG))
     n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
     t0 = time.process_time()
@@ -206,8 +205,9 @@ def run_scene(scene, history=False, max_log=100_000):
         status=codes.STATUS_NAMES[status], message=codes.STATUS_MESSAGES[status],
         overturned=overturned, t_overturn=_nan_to_none(res[codes.R_T_OVERTURN]),
         overturn_direction=int(res[codes.R_DIRECTION]) if overturned else None,
-        impact_times=log[:n_log, 0].tolist(), omega_after=log[:n_log, 1].tolist(),
-        impact_slipped=[bool(int(f) & SLIPPED) for f in log[:n_log, 2]],
+        impact_times=log[:n_log, codes.LOG_T].tolist(),
+        omega_after=log[:n_log, codes.LOG_OMEGA].tolist(),
+        impact_slipped=[bool(int(f) & codes.SLIPPED) for f in log[:n_log, codes.LOG_FLAGS]],
         max_abs_theta=float(res[codes.R_MAX_ABS_THETA]),
         t_rest=_nan_to_none(res[codes.R_T_REST]),
         mode_time={name: float(res[codes.R_MODE_TIME + m])

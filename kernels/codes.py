@@ -1,14 +1,22 @@
 """Integer codes shared by the kernel and its users.
 
-Modes (the paper's six motion types), end statuses, ground-motion kinds, and the layout of
-the flat float64 parameter row that describes one scene to the compiled code.  The name
-tuples feed error messages and the CF ``flag_meanings`` of the output datasets.
+Modes (the paper's six motion types), end statuses, ground-motion kinds, the layout of the
+flat float64 parameter row that describes one scene to the compiled code, the indices of
+the state vector, and the columns of the impact log and the history.  The name tuples feed
+error messages and the CF ``flag_meanings`` of the output datasets.
 """
 
 # --- modes (Ishiyama's Fig. 1) -------------------------------------------------------------
 REST, SLIDE, ROTATION, SLIDE_ROTATION, TRANSLATION_JUMP, ROTATION_JUMP = range(6)
 MODE_NAMES = ("rest", "slide", "rotation", "slide_rotation", "translation_jump", "rotation_jump")
 N_MODES = 6
+
+# --- the full state q = (x, y, theta, u, v, omega) of G relative to the floor (PHYSICS 1.1)
+IX, IY, ITHETA, IU, IV, IOMEGA = range(6)
+N_STATE = 6
+# the mode's contact: corner s (-1 left, +1 right), slip direction sigma, pivot or rest x
+CTX_S, CTX_SIGMA, CTX_X = range(3)
+N_CTX = 3
 
 # --- end status of a scene ------------------------------------------------------------------
 OK, OVERTURNED, BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE = range(5)
@@ -64,6 +72,15 @@ N_PAR = P_GY + G_SIZE
  R_F_AT_OVERTURN, R_A_AT_OVERTURN, R_V_AT_OVERTURN) = range(15)
 R_MODE_TIME = 15                      # six entries, seconds in each mode
 N_RES = R_MODE_TIME + N_MODES
+
+# Impact flag bits (what an impact law did)
+SLIPPED = 1              # the impulse left the friction cone: the contact slipped
+CLAMPED = 2              # the law would have gained energy: a plastic law replaced it
+IMPACT_PAINLEVE = 4      # the impact problem has no solution (Painleve case)
+
+# Impact log columns: time, omega after, flag bits
+LOG_T, LOG_OMEGA, LOG_FLAGS = range(3)
+N_LOG = 3
 
 # History columns (when asked for): sampled every P_DT_OUT seconds.
 (H_T, H_X, H_Y, H_THETA, H_U, H_V, H_OMEGA, H_MODE, H_AX, H_AY) = range(10)

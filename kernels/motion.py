@@ -21,12 +21,9 @@ corner, which a floor acceleration to the right drives.  Forces are per unit mas
 import math
 
 from ._jit import jit
-from .codes import REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP
+from .codes import (CTX_S, CTX_SIGMA, CTX_X, IOMEGA, ITHETA, IU, IV, IX, IY, REST, ROTATION,
+                    ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP)
 from .ground import G, ground
-
-IX, IY, ITHETA, IU, IV, IOMEGA = range(6)
-CTX_S, CTX_SIGMA, CTX_X = range(3)
-N_CTX = 3
 
 
 @jit
@@ -80,20 +77,22 @@ def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2, mu):
 
 
 @jit(inline="always")
-def rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, out):
+def rhs(mode, t, z, ctx, scene, rec, out):
     """Write dz/dt of the mode's compact state z into out."""
-    a_x, a_y = ground(t, par, rec)
+    a_x, a_y = ground(t, scene.floor, rec)
     g_e = G + a_y
+    b, h, i2 = scene.body
+    contact = scene.contact
     if mode == SLIDE:                                  # (2): u' = -a_x - mu_k g_e sgn(u)
         out[0] = z[1]
-        out[1] = -a_x - mu_k * g_e * ctx[CTX_SIGMA]
+        out[1] = -a_x - contact.mu_k * g_e * ctx[CTX_SIGMA]
     elif mode == ROTATION:                             # (3), theta'' only
         rcx, rcy = corner(ctx[CTX_S], z[0], b, h)
         out[0] = z[1]
         out[1] = (g_e * rcx - a_x * rcy) / (i2 + b * b + h * h)
     elif mode == SLIDE_ROTATION:
         thdd, udd, N, D = slide_rotation_dynamics(z[0], z[1], ctx[CTX_S], ctx[CTX_SIGMA],
-                                                  a_x, g_e, b, h, i2, mu_edge_k)
+                                                  a_x, g_e, b, h, i2, contact.mu_edge_k)
         out[0] = z[1]
         out[1] = thdd
         out[2] = z[3]
@@ -113,8 +112,9 @@ def rhs(mode, t, z, par, rec, ctx, b, h, i2, mu_k, mu_edge_k, out):
 
 
 @jit
-def to_full(mode, z, ctx, b, h, q):
+def to_full(mode, z, ctx, body, q):
     """Fill the full state q = (x, y, theta, u, v, omega) from the compact state z."""
+    b, h = body.b, body.h
     if mode == REST:
         q[IX] = ctx[CTX_X]
         q[IY] = h
@@ -156,8 +156,9 @@ def to_full(mode, z, ctx, b, h, q):
 
 
 @jit
-def from_full(mode, q, ctx, b, h, z):
+def from_full(mode, q, ctx, body, z):
     """Pack the full state q into the compact state z of a mode (sets the pivot in ctx)."""
+    b, h = body.b, body.h
     if mode == REST:
         ctx[CTX_X] = q[IX]
     elif mode == SLIDE:

@@ -1,17 +1,56 @@
-"""Which mode a body is in, given its state and the floor (PHYSICS.md section 1.3).
+"""The mode table: which mode a body is in, and what each event leads to (PHYSICS.md 1.3,
+2 and 3.1).  Modes are the paper's six motion types (``codes``); events are those of
+``events``.
 
-``leave_rest`` is the table for a body whose face is on the floor without relative motion;
-``select_corner`` decides for a body touching the floor with one corner; ``select_face``
-decides with theta = 0 after an impact or a landing, including the Zeno closure of
-section 3.1.  Each returns (mode, s, sigma): the contact corner (-1 left, +1 right) and
-the slip direction sgn(V_cx), as the equations of motion need them.
+=================  ================  ===========================  ========================
+mode               event             law                          next mode
+=================  ================  ===========================  ========================
+rest               floor exceeds     -                            ``leave_rest``
+                   kappa g_e (``rest_skipping``)
+slide              stop (u = 0)      -                            ``leave_rest``
+slide              free fall         -                            translation jump
+rotation,          impact (theta=0)  ``face_impact`` (2.1-2.3)    ``select_face``
+slide_rotation     lift-off (N = 0)  -                            rotation jump
+                   slip (|F| = mu N) -                            slide rotation
+                   slip ends (V = 0) corner stops                 ``select_corner``
+                   overturn, D <= 0  -                            end (overturned, Painleve)
+translation jump   landing           ``face_impact`` (2.3)        ``select_face``
+rotation jump      corner gap = 0    ``corner_impact`` (2.2)      bounce (Zeno: ``zeno``)
+                                                                  or ``select_corner``
+                   overturn          -                            end (overturned)
+=================  ================  ===========================  ========================
+
+Every choice returns (mode, s, sigma): the contact corner (-1 left, +1 right) and the slip
+direction sgn(V_cx), as the equations of motion need them.  Zeno closure (``zeno``) decides
+whether a contact that would close again within zeno_dt is closed now.
 """
 import math
 
 from ._jit import jit
-from .codes import REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP
-from .motion import IOMEGA, ITHETA, IU, IV, corner, corner_velocity, rotation_dynamics, \
-    slide_rotation_dynamics
+from .codes import (CTX_S, CTX_SIGMA, IMPACT_PAINLEVE, IOMEGA, ITHETA, IU, IV, IX, IY, OK,
+                    OVERTURNED, PAINLEVE, REST, ROTATION, ROTATION_JUMP, SLIDE, SLIDE_ROTATION,
+                    TRANSLATION_JUMP)
+from .corner_impact import corner_impact
+from .events import (EV_GAP_L, EV_JUMP_OVERTURN, EV_LIFTOFF, EV_OVERTURN, EV_PAINLEVE,
+                     EV_SLIP, EV_STOP)
+from .face_impact import face_impact
+from .ground import G, ground
+from .motion import corner, corner_velocity, rotation_dynamics, slide_rotation_dynamics
+from .tolerances import ROCKING_ROUNDOFF
+from .zeno import leaves, rocking_closes, stop_corner
+
+NOT_AN_IMPACT = -1       # impact flags of an event that was not an impact
+
+
+@jit
+def flat_sliding_friction(mu_k, mu_edge_k, b, h):
+    """The surface's kinetic friction as flat sliding sees it.
+
+    With mu_k > b/h >= mu_edge_k flat sliding would tip the body onto its leading corner,
+    where the lower edge friction tips it straight back.  The body then slides flat on the
+    verge of tipping, with the friction that holds theta'' = 0 there: b/h.
+    """
+    return min(mu_k, max(b / h, mu_edge_k))
 
 
 @jit
@@ -21,8 +60,10 @@ def mu_required(A, b, h, i2):
 
 
 @jit
-def leave_rest(a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_k):
+def leave_rest(a_x, g_e, body, contact):
     """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b/h."""
+    b, h, i2 = body
+    mu_s = contact.mu_s
     if g_e <= 0.0:
         return TRANSLATION_JUMP, 0.0, 0.0
     A = abs(a_x) / g_e
@@ -34,73 +75,52 @@ def leave_rest(a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_k):
     if A > beta:
         if mu_s >= mu_required(A, b, h, i2):
             return ROTATION, s, 0.0
-        if mu_edge_k > beta:           # the pivot slips backwards relative to the floor
+        if contact.mu_edge_k > beta:   # the pivot slips backwards relative to the floor
             return SLIDE_ROTATION, s, -drive
     if A > mu_s:
-        return start_slide(-drive, mu_k, b, h)
+        return start_slide(-drive, body, contact)
     return REST, 0.0, 0.0
 
 
 @jit
-def start_slide(sigma, mu_k, b, h):
+def start_slide(sigma, body, contact):
     """Flat sliding with sgn(u) = sigma; with mu_k > b/h the body trips over its leading
     corner instead (one normal force would turn negative, PHYSICS 1.2 (2))."""
-    if mu_k > b / h:
+    if contact.mu_k > body.b / body.h:
         return SLIDE_ROTATION, sigma, sigma
     return SLIDE, 0.0, sigma
 
 
 @jit
-def select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k, v_tol):
+def select_corner(q, s, a_x, g_e, body, contact, v_tol):
     """Mode of a body whose corner s touches the floor (gap 0).
 
     A corner velocity below v_tol (a bounce or a slip that would end within zeno_dt) is
-    closed by the plastic impulse that stops it (``stop_corner``), so the state satisfies
-    the contact constraints of the mode it enters without gaining energy.
+    closed by the plastic impulse that stops it, so the state satisfies the contact
+    constraints of the mode it enters without gaining energy.
     """
+    b, h, i2 = body
     Vx, Vy = corner_velocity(q, s, b, h)
-    if Vy > v_tol:
+    if leaves(Vy, v_tol):
         return ROTATION_JUMP, s, 0.0
-    stop_corner(q, s, b, h, i2, abs(Vx) <= v_tol)
-    if abs(Vx) > v_tol:
+    stop_corner(q, s, body, not leaves(abs(Vx), v_tol))
+    if leaves(abs(Vx), v_tol):
         sigma = math.copysign(1.0, Vx)
         N = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, g_e, b, h, i2,
-                                    mu_edge_k)[2]
+                                    contact.mu_edge_k)[2]
         if N <= 0.0:
             return ROTATION_JUMP, s, 0.0
         return SLIDE_ROTATION, s, sigma
     thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)
     if N > 0.0:
-        if abs(F) <= mu_edge_s * N:
+        if abs(F) <= contact.mu_edge_s * N:
             return ROTATION, s, 0.0
         return SLIDE_ROTATION, s, -math.copysign(1.0, F)
-    return _unstick(q, s, -math.copysign(1.0, F), a_x, g_e, b, h, i2, mu_edge_k)
+    return unstick(q, s, -math.copysign(1.0, F), a_x, g_e, body, contact.mu_edge_k)
 
 
 @jit
-def stop_corner(q, s, b, h, i2, tangential):
-    """Apply at corner s the impulse P that stops its normal velocity (and, if tangential,
-    its tangential one too): V_c+ = V_c- + W P with the corner's inverse mass matrix W (per
-    unit mass).  The change of energy, P.V_c-/2, is never positive."""
-    rcx, rcy = corner(s, q[ITHETA], b, h)
-    Vx, Vy = corner_velocity(q, s, b, h)
-    wxx = 1.0 + rcy * rcy / i2
-    wxy = -rcx * rcy / i2
-    wyy = 1.0 + rcx * rcx / i2
-    if tangential:
-        det = wxx * wyy - wxy * wxy
-        Px = -(wyy * Vx - wxy * Vy) / det
-        Py = -(wxx * Vy - wxy * Vx) / det
-    else:
-        Px = 0.0
-        Py = -Vy / wyy
-    q[IU] += Px
-    q[IV] += Py
-    q[IOMEGA] += (rcx * Py - rcy * Px) / i2
-
-
-@jit
-def _unstick(q, s, sigma_f, a_x, g_e, b, h, i2, mu):
+def unstick(q, s, sigma_f, a_x, g_e, body, mu):
     """Mode of a resting corner (V_c = 0) that sticking would have to pull down (N <= 0).
 
     The corner flies if gravity alone lets it rise: its free acceleration
@@ -109,6 +129,7 @@ def _unstick(q, s, sigma_f, a_x, g_e, b, h, i2, mu):
     tangential acceleration u'' - theta'' r_cy - omega^2 r_cx points; sigma_f (against the
     sticking friction force) when neither direction is consistent.
     """
+    b, h, i2 = body
     theta, omega = q[ITHETA], q[IOMEGA]
     rcx, rcy = corner(s, theta, b, h)
     if g_e + omega * omega * rcy <= 0.0:
@@ -122,29 +143,29 @@ def _unstick(q, s, sigma_f, a_x, g_e, b, h, i2, mu):
 
 
 @jit
-def select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol, zeno_dt):
+def select_face(q, a_x, g_e, body, contact, solver):
     """Mode after an impact or landing with theta = 0 (both corners at the floor).
 
-    Zeno closure (PHYSICS 3.1): a corner contact whose next impact would come within
-    zeno_dt (2|omega|/|theta''| with a restoring theta'') is closed to face contact.
-    A face contact sets q to it in place (omega = v = 0, u = the base's slip velocity).
+    Zeno closure: a corner contact whose next impact would come within zeno_dt is closed
+    to face contact.  A face contact sets q to it in place (omega = v = 0, u = the base's
+    slip velocity).
     """
-    if abs(q[IOMEGA]) * b <= 1e-12 * (abs(q[IU]) + abs(q[IV])):
+    b, h, i2 = body
+    v_tol = solver.v_tol
+    if abs(q[IOMEGA]) * b <= ROCKING_ROUNDOFF * (abs(q[IU]) + abs(q[IV])):
         q[IOMEGA] = 0.0                 # round-off of a rotation-free impulse, not rocking
     omega = q[IOMEGA]
     VL = corner_velocity(q, -1.0, b, h)[1]
     VR = corner_velocity(q, 1.0, b, h)[1]
-    if VL > v_tol and VR > v_tol:
+    if leaves(VL, v_tol) and leaves(VR, v_tol):
         if abs(omega) > 0.0:
             return ROTATION_JUMP, 0.0, 0.0
         return TRANSLATION_JUMP, 0.0, 0.0
     if omega != 0.0:
         s = -1.0 if omega > 0.0 else 1.0          # omega > 0 lifts the right corner
         thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, b, h, i2)[0]
-        restoring = thdd * omega < 0.0
-        if not (restoring and 2.0 * abs(omega) < zeno_dt * abs(thdd)):
-            m, s2, sigma = select_corner(q, s, a_x, g_e, b, h, i2, mu_edge_s, mu_edge_k,
-                                         v_tol)
+        if not rocking_closes(omega, thdd, solver.zeno_dt):
+            m, s2, sigma = select_corner(q, s, a_x, g_e, body, contact, v_tol)
             if s * q[IOMEGA] < 0.0:               # the closure left it rocking about s
                 return m, s2, sigma
     # face contact: normal impulses under the base stop omega and v and leave u, which is
@@ -152,8 +173,117 @@ def select_face(q, a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_s, mu_edge_k, v_tol, 
     q[IOMEGA] = 0.0
     q[IV] = 0.0
     slip = q[IU]
-    if abs(slip) > v_tol:
+    if leaves(abs(slip), v_tol):
         q[IU] = slip
-        return start_slide(math.copysign(1.0, slip), mu_k, b, h)
+        return start_slide(math.copysign(1.0, slip), body, contact)
     q[IU] = 0.0
-    return leave_rest(a_x, g_e, b, h, i2, mu_s, mu_k, mu_edge_k)
+    return leave_rest(a_x, g_e, body, contact)
+
+
+@jit
+def initial_mode(q, scene, rec):
+    """Full initial state q (x = 0) and (mode, s, sigma) from the scene's initial values."""
+    body = scene.body
+    b, h = body.b, body.h
+    theta, omega, lift = scene.initial.theta, scene.initial.omega, scene.initial.lift
+    q[IX] = 0.0
+    q[ITHETA] = theta
+    q[IU] = scene.initial.u
+    q[IV] = scene.initial.v
+    q[IOMEGA] = omega
+    a_x, a_y = ground(0.0, scene.floor, rec)
+    g_e = G + a_y
+    if lift > 0.0:
+        q[IY] = lift - min(corner(-1.0, theta, b, h)[1], corner(1.0, theta, b, h)[1])
+        if theta != 0.0 or omega != 0.0:
+            return ROTATION_JUMP, 0.0, 0.0
+        return TRANSLATION_JUMP, 0.0, 0.0
+    if theta != 0.0 or omega != 0.0:
+        s = -math.copysign(1.0, theta if theta != 0.0 else omega)
+        rcx, rcy = corner(s, theta, b, h)
+        q[IY] = -rcy
+        q[IV] = -omega * rcx          # the contact corner does not move vertically
+        return select_corner(q, s, a_x, g_e, body, scene.contact, scene.solver.v_tol)
+    q[IY] = h
+    if q[IV] > 0.0:
+        return TRANSLATION_JUMP, 0.0, 0.0
+    q[IV] = 0.0
+    if q[IU] != 0.0:
+        return start_slide(math.copysign(1.0, q[IU]), body, scene.contact)
+    return leave_rest(a_x, g_e, body, scene.contact)
+
+
+@jit
+def _face_landing(mode, s, sigma, q, a_x, g_e, scene):
+    """Impact with the face flat (theta = 0) and the mode after it."""
+    q[IY] = scene.body.h
+    flags = face_impact(q, scene.body, scene.contact)
+    if flags & IMPACT_PAINLEVE:
+        return mode, s, sigma, PAINLEVE, flags
+    m, s2, sg2 = select_face(q, a_x, g_e, scene.body, scene.contact, scene.solver)
+    return m, s2, sg2, OK, flags
+
+
+@jit
+def on_event(k, mode, t, q, ctx, scene, rec):
+    """Apply event k of the mode at time t to q by the table above.
+
+    Returns (mode, s, sigma, status, impact flags); the flags are ``NOT_AN_IMPACT`` when
+    the event was not an impact.
+    """
+    body, contact = scene.body, scene.contact
+    b, h, i2 = body
+    a_x, a_y = ground(t, scene.floor, rec)
+    g_e = G + a_y
+    s = ctx[CTX_S]
+    sigma = ctx[CTX_SIGMA]
+    if mode == ROTATION or mode == SLIDE_ROTATION:
+        if k == EV_OVERTURN:
+            return mode, s, sigma, OVERTURNED, NOT_AN_IMPACT
+        if k == EV_PAINLEVE:
+            return mode, s, sigma, PAINLEVE, NOT_AN_IMPACT
+        if k == EV_LIFTOFF:
+            return ROTATION_JUMP, 0.0, 0.0, OK, NOT_AN_IMPACT
+        if k == EV_SLIP and mode == ROTATION:
+            F = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)[1]
+            return SLIDE_ROTATION, s, -math.copysign(1.0, F), OK, NOT_AN_IMPACT
+        if k == EV_SLIP:                                # the slipping corner stops
+            q[IU] = q[IOMEGA] * corner(s, q[ITHETA], b, h)[1]
+            m, s2, sg2 = select_corner(q, s, a_x, g_e, body, contact, scene.solver.v_tol)
+            return m, s2, sg2, OK, NOT_AN_IMPACT
+        q[ITHETA] = 0.0                                 # EV_IMPACT: the other corner strikes
+        return _face_landing(mode, s, sigma, q, a_x, g_e, scene)
+    if mode == SLIDE:
+        if k == EV_STOP:
+            q[IU] = 0.0
+            m, s2, sg2 = leave_rest(a_x, g_e, body, contact)
+            return m, s2, sg2, OK, NOT_AN_IMPACT
+        q[IV] = 0.0                                     # EV_FREE_FALL: g_e reached 0
+        return TRANSLATION_JUMP, 0.0, 0.0, OK, NOT_AN_IMPACT
+    if mode == TRANSLATION_JUMP:                        # flat landing
+        return _face_landing(mode, s, sigma, q, a_x, g_e, scene)
+    # rotation jump
+    if k == EV_JUMP_OVERTURN:
+        return mode, s, sigma, OVERTURNED, NOT_AN_IMPACT
+    sc = -1.0 if k == EV_GAP_L else 1.0
+    q[IY] = -corner(sc, q[ITHETA], b, h)[1]
+    flags = corner_impact(q, sc, body, contact)
+    if flags & IMPACT_PAINLEVE:
+        return mode, s, sigma, PAINLEVE, flags
+    if leaves(corner_velocity(q, sc, b, h)[1], scene.solver.v_tol):   # still airborne
+        return ROTATION_JUMP, 0.0, 0.0, OK, flags
+    m, s2, sg2 = select_corner(q, sc, a_x, g_e, body, contact, scene.solver.v_tol)
+    return m, s2, sg2, OK, flags
+
+
+@jit
+def painleve_at_entry(mode, s, sigma, t, q, scene, rec):
+    """Whether slide rotation, entered now, has no consistent contact force (D <= 0,
+    PHYSICS 3.2)."""
+    if mode != SLIDE_ROTATION:
+        return False
+    b, h, i2 = scene.body
+    a_x, a_y = ground(t, scene.floor, rec)
+    D = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, G + a_y, b, h, i2,
+                                scene.contact.mu_edge_k)[3]
+    return D <= 0.0

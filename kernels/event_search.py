@@ -1,0 +1,104 @@
+"""Where the first event of a taken step lies (scipy's ``find_active_events`` and
+``handle_events`` for this kernel).
+
+Each event function is tested at the step's end or, when the step holds a turning point
+(omega or a vertical velocity changes sign), at a third, two thirds and the end: an event
+function that dips below zero and back inside one step is then still seen if the dip spans
+a third of it; without a turning point theta and the gaps are monotone in the step.  A sign
+change is located on the dense output by Brent's method; a function that entered the step
+at zero (a corner that has just left the floor) is first searched for a positive peak.
+``polish`` puts the located event on its root with the step's own accuracy.
+"""
+from ._jit import jit
+from .codes import ROTATION_JUMP, SLIDE, TRANSLATION_JUMP
+from .events import event_value, event_values, n_events
+from .integrate import dense
+from .motion import to_full
+from .roots import brent, peak_above_zero
+from .tolerances import EVENT_XTOL, PEAK_XTOL, POLISH_DELTA, POLISH_MAX
+
+SAMPLES = (1.0 / 3.0, 2.0 / 3.0, 1.0)     # step fractions tested when it holds a turn
+END_ONLY = (1.0, 1.0, 1.0)                # ... and when it does not
+
+
+@jit(inline="always")
+def _value_at(x, args):
+    """Event function k at the fraction x of the step (args = (k, step, ctx, scene, rec, z,
+    q, g): scratch for the compact and the full state and the event values)."""
+    k, step, ctx, scene, rec, z, q, g = args
+    dense(step, x, z)
+    to_full(step.mode, z, ctx, scene.body, q)
+    return event_value(k, step.mode, step.t + x * step.dt, q, ctx, scene, rec, g)
+
+
+_locate = brent(_value_at)
+_peak = peak_above_zero(_value_at)
+
+
+@jit(inline="always")
+def first_event(step, ctx, scene, rec, values, scratch):
+    """(k, x): the mode's event that fires first inside ``step`` and the step fraction where
+    it does; k = -1 if none does, and then ``values.last`` holds the event values at the
+    step's end.  ``values.old`` holds them at the step's start."""
+    mode, z, z_new = step.mode, step.z, step.z_new
+    g_old, g_new, g_last = values
+    z_x, q_x, g_x = scratch
+    ne = n_events(mode)
+    for k in range(ne):
+        g_last[k] = g_old[k]
+    xa = 0.0
+    x_e = 2.0
+    k_e = -1
+    turning = mode == TRANSLATION_JUMP or mode == ROTATION_JUMP or \
+        (mode != SLIDE and z[1] * z_new[1] <= 0.0)
+    for xs in SAMPLES if turning else END_ONLY:
+        if xs == xa:
+            break
+        dense(step, xs, z_x)
+        to_full(mode, z_x, ctx, scene.body, q_x)
+        event_values(mode, step.t + xs * step.dt, q_x, ctx, scene, rec, g_new)
+        for k in range(ne):
+            if g_new[k] > 0.0:
+                continue
+            args = (k, step, ctx, scene, rec, z_x, q_x, g_x)
+            xl, gl = xa, g_last[k]
+            if gl <= 0.0:            # entered the step at zero: did it rise and come back?
+                xl, gl = _peak(args, xa, xs, PEAK_XTOL)
+            if gl > 0.0:
+                xr = _locate(args, xl, xs, gl, g_new[k], EVENT_XTOL)
+            else:
+                xr = xa              # it left zero the wrong way: the event is now
+            if xr < x_e:
+                x_e = xr
+                k_e = k
+        if k_e >= 0:
+            break
+        xa = xs
+        for k in range(ne):
+            g_last[k] = g_new[k]
+    return k_e, x_e
+
+
+@jit
+def polish(k, step, ctx, scene, rec, scratch):
+    """Newton's step on event k from the end of ``step`` (taken exactly to the event):
+    move step.z_new along its slope f by d and return d.  The event was found on the dense
+    output, one order less exact than the step; this puts it on its root with the step's
+    own accuracy.  A correction of POLISH_MAX of the step or more is not taken."""
+    mode, z, dt = step.mode, step.z_new, step.dt
+    f = step.K[step.end]
+    t = step.t + dt
+    zbuf, q, g = scratch
+    to_full(mode, z, ctx, scene.body, q)
+    g0 = event_value(k, mode, t, q, ctx, scene, rec, g)
+    delta = POLISH_DELTA * dt
+    for j in range(step.n):
+        zbuf[j] = z[j] + delta * f[j]
+    to_full(mode, zbuf, ctx, scene.body, q)
+    slope = (event_value(k, mode, t + delta, q, ctx, scene, rec, g) - g0) / delta
+    d = -g0 / slope if slope != 0.0 else 0.0
+    if not abs(d) < POLISH_MAX * dt:
+        return 0.0
+    for j in range(step.n):
+        z[j] += d * f[j]
+    return d

@@ -1,0 +1,107 @@
+"""Impact with the face flat, theta = 0: the flat landing after a translation jump and the
+rocking impact of the other corner (PHYSICS.md 2.1-2.3).
+
+Both corners get Newton's normal target -e_y V_n- (0 for a corner not approaching); the
+total tangential impulse acts at the height -h below G.  The two-contact solution is taken
+when both normal impulses are >= 0 (a flat landing, or a squat block whose old pivot cannot
+lift); otherwise only the corner striking harder takes the impulse with the edge friction
+(Housner's case, ``corner_impact``), and if that drives the other corner into the floor,
+that one is struck in turn: a sequence of single-corner impacts, each dissipative.
+"""
+import math
+
+from ._jit import jit
+from .codes import CLAMPED, IMPACT_PAINLEVE, IOMEGA, IU, IV, SLIPPED
+from .corner_impact import corner_impact, restore_velocities
+from .motion import corner_velocity, kinetic_energy
+from .tolerances import APPROACH_ROUNDOFF, ENERGY_ROUNDOFF, IMPULSE_ROUNDOFF, V_ZERO
+
+SEQUENTIAL_IMPACTS = 50  # at most this many alternating corner impacts in one face impact
+
+
+@jit
+def _solve3(M, r):
+    """Solve the 3x3 system M x = r by Cramer's rule (M given as a 9-tuple, row major)."""
+    a, b_, c, d, e, f, g, h, k = M
+    det = a * (e * k - f * h) - b_ * (d * k - f * g) + c * (d * h - e * g)
+    x0 = (r[0] * (e * k - f * h) - b_ * (r[1] * k - f * r[2]) + c * (r[1] * h - e * r[2])) / det
+    x1 = (a * (r[1] * k - f * r[2]) - r[0] * (d * k - f * g) + c * (d * r[2] - r[1] * g)) / det
+    x2 = (a * (e * r[2] - r[1] * h) - b_ * (d * r[2] - r[1] * g) + r[0] * (d * h - e * g)) / det
+    return x0, x1, x2
+
+
+@jit
+def face_impulses(q, body, contact):
+    """Two-contact impulses (P_L, P_R, P_t, flags) with the face flat (PHYSICS 2.3,
+    generalised to omega != 0 as the velocity-level two-contact problem), with the surface
+    friction: the tangential impulse is (1 + e_x) times the sticking one, capped by the
+    friction cone |P_t| <= mu_s (P_L + P_R), beyond which it slips with mu_k."""
+    b, h, i2 = body
+    e_x, e_y, mu_s, mu_k = contact.e_x, contact.e_y, contact.mu_s, contact.mu_k
+    u, v, omega = q[IU], q[IV], q[IOMEGA]
+    VL = v - omega * b
+    VR = v + omega * b
+    Vx = u + omega * h
+    dL = -VL - e_y * min(VL, 0.0)
+    dR = -VR - e_y * min(VR, 0.0)
+    k1 = b * b / i2
+    k2 = b * h / i2
+    k3 = h * h / i2
+    Mfull = (1.0 + k1, 1.0 - k1, -k2,
+             1.0 - k1, 1.0 + k1, k2,
+             -k2, k2, 1.0 + k3)
+    Pt = (1.0 + e_x) * _solve3(Mfull, (dL, dR, -Vx))[2]
+    # normals with the tangential impulse fixed
+    det = (1.0 + k1) ** 2 - (1.0 - k1) ** 2
+    rL = dL + k2 * Pt
+    rR = dR - k2 * Pt
+    PL = ((1.0 + k1) * rL - (1.0 - k1) * rR) / det
+    PR = ((1.0 + k1) * rR - (1.0 - k1) * rL) / det
+    if omega != 0.0 and min(PL, PR) < -IMPULSE_ROUNDOFF * (abs(PL) + abs(PR)):
+        # a rocking impact whose sticking two-contact solution pulls a corner down: the old
+        # pivot lifts (Housner's case); a flat landing goes on to the friction cap (2.3)
+        return PL, PR, Pt, 0
+    if abs(Pt) <= mu_s * (PL + PR):
+        return PL, PR, Pt, 0
+    sigma = math.copysign(1.0, Vx) if abs(Vx) > V_ZERO else -math.copysign(1.0, Pt)
+    c = -sigma * mu_k                      # P_t = c (P_L + P_R)
+    a11 = 1.0 + k1 - k2 * c
+    a12 = 1.0 - k1 - k2 * c
+    a21 = 1.0 - k1 + k2 * c
+    a22 = 1.0 + k1 + k2 * c
+    det = a11 * a22 - a12 * a21
+    if det == 0.0:
+        return 0.0, 0.0, 0.0, IMPACT_PAINLEVE
+    PL = (a22 * dL - a12 * dR) / det
+    PR = (a11 * dR - a21 * dL) / det
+    return PL, PR, c * (PL + PR), SLIPPED
+
+
+@jit
+def face_impact(q, body, contact):
+    """Impact with theta = 0, both corners at the floor; updates q, returns flag bits."""
+    b, h, i2 = body
+    u, v, omega = q[IU], q[IV], q[IOMEGA]
+    ke = kinetic_energy(q, i2)
+    PL, PR, Pt, flags = face_impulses(q, body, contact)
+    tol = IMPULSE_ROUNDOFF * (abs(PL) + abs(PR))
+    if not flags & IMPACT_PAINLEVE and PL >= -tol and PR >= -tol:
+        q[IU] += Pt
+        q[IV] += PL + PR
+        q[IOMEGA] += (b * (PR - PL) + h * Pt) / i2
+        if kinetic_energy(q, i2) <= ke * (1.0 + ENERGY_ROUNDOFF):
+            return flags
+        restore_velocities(q, u, v, omega)
+    # Only the corner striking harder takes the impulse, then the other in turn while the
+    # last one drives it into the floor.
+    s = -1.0 if v - omega * b < v + omega * b else 1.0
+    flags = 0
+    for _ in range(SEQUENTIAL_IMPACTS):
+        flags |= corner_impact(q, s, body, contact)
+        if flags & IMPACT_PAINLEVE:
+            return flags
+        s = -s
+        if corner_velocity(q, s, b, h)[1] >= -APPROACH_ROUNDOFF * (abs(q[IV])
+                                                                 + b * abs(q[IOMEGA])):
+            return flags
+    return flags | CLAMPED

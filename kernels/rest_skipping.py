@@ -1,0 +1,70 @@
+"""Rest without stepping: the next instant at which the floor can move a resting body.
+
+A body at rest leaves rest when |a_x| > mu_s g_e, |a_x| > (b/h) g_e or g_e < 0
+(PHYSICS.md 1.3), i.e. when phi(t) = |a_x| - kappa g_e > 0 with kappa = min(mu_s, b/h).
+The floor is scanned in intervals that hold at most one extremum of a smooth component
+(1/8 of its period) and never cross a break of the motion; where a sampled slope bound
+allows phi to rise above zero inside an interval, its peak is found by golden-section
+search, so a short excursion above the threshold between two samples is not missed.  The
+crossing itself is located by bisection to ``REST_XTOL``.
+"""
+import math
+
+from ._jit import jit
+from .ground import G, ground, ground_end, next_break, scan_step
+from .roots import bisect, peak_above_zero
+from .tolerances import BREAK_GUARD, PEAK_XTOL, REST_XTOL
+
+
+@jit
+def rest_threshold(body, contact):
+    """kappa: rest ends when |a_x| > kappa g_e."""
+    return min(contact.mu_s, body.b / body.h)
+
+
+@jit
+def _phi(t, args):
+    """|a_x| - kappa g_e at t (args = (kappa, floor, rec)); rest ends where it is > 0."""
+    kappa, floor, rec = args
+    a_x, a_y = ground(t, floor, rec)
+    return abs(a_x) - kappa * (G + a_y)
+
+
+_crossing = bisect(_phi)
+_peak = peak_above_zero(_phi)
+
+
+@jit
+def rest_exit(t, t_stop, kappa, floor, rec):
+    """First time in [t, t_stop) at which the floor can move a body at rest; inf if none.
+
+    Evaluations of the floor motion just before a break use its left-hand value.
+    """
+    args = (kappa, floor, rec)
+    if _phi(t, args) > 0.0:
+        return t
+    t_stop = min(t_stop, ground_end(floor))
+    ta = t
+    phi_a = _phi(ta, args)
+    while ta < t_stop:
+        tb = min(ta + scan_step(ta, floor), next_break(ta, floor), t_stop)
+        tl = tb - BREAK_GUARD if tb < t_stop else tb          # left-hand value at a break
+        phi_b = _phi(tl, args)
+        if phi_b > 0.0:
+            return _crossing(args, ta, tl, REST_XTOL)
+        tm = 0.5 * (ta + tl)
+        phi_m = _phi(tm, args)
+        if phi_m > 0.0:
+            return _crossing(args, ta, tm, REST_XTOL)
+        # a peak inside the interval could rise above zero between the samples: bound it
+        # by the largest sample plus the sampled slope times the whole interval
+        slope = 2.0 * max(abs(phi_m - phi_a), abs(phi_b - phi_m)) / (tl - ta)
+        if max(phi_a, phi_m, phi_b) + slope * (tl - ta) > 0.0:
+            tp, phi_p = _peak(args, ta, tl, PEAK_XTOL)
+            if phi_p > 0.0:
+                return _crossing(args, ta, tp, REST_XTOL)
+        ta = tb
+        phi_a = _phi(ta, args)
+        if phi_a > 0.0:
+            return ta
+    return math.inf

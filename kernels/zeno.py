@@ -1,0 +1,50 @@
+"""Zeno closure (PHYSICS.md 3.1): contacts that would close again within ``zeno_dt``.
+
+An accumulation of impacts (a bounce or rocking decaying geometrically) would take
+infinitely many events in finite time.  The kernel closes it: a corner moving away from the
+floor or along it slower than v_tol = g zeno_dt / 2 (``state.Solver``) would be back or
+stopped within zeno_dt, so it is stopped now by the plastic impulse at the corner, never by
+dropping velocity components, so that no closure adds energy; and rocking whose next impact
+would come within zeno_dt is closed to face contact.  The mode table (``transitions``)
+asks these questions; the answers are here.
+"""
+from ._jit import jit
+from .codes import IOMEGA, ITHETA, IU, IV
+from .motion import corner, corner_velocity
+
+
+@jit(inline="always")
+def leaves(V, v_tol):
+    """Whether a corner moving away from the floor (or slipping) at speed V stays apart
+    (or slipping) for longer than zeno_dt."""
+    return V > v_tol
+
+
+@jit(inline="always")
+def rocking_closes(omega, thdd, zeno_dt):
+    """Whether rocking about a corner with rate omega and a restoring theta'' would strike
+    again within zeno_dt (after 2 |omega| / |theta''|)."""
+    return thdd * omega < 0.0 and 2.0 * abs(omega) < zeno_dt * abs(thdd)
+
+
+@jit
+def stop_corner(q, s, body, tangential):
+    """Apply at corner s the impulse P that stops its normal velocity (and, if tangential,
+    its tangential one too): V_c+ = V_c- + W P with the corner's inverse mass matrix W (per
+    unit mass).  The change of energy, P.V_c-/2, is never positive."""
+    b, h, i2 = body
+    rcx, rcy = corner(s, q[ITHETA], b, h)
+    Vx, Vy = corner_velocity(q, s, b, h)
+    wxx = 1.0 + rcy * rcy / i2
+    wxy = -rcx * rcy / i2
+    wyy = 1.0 + rcx * rcx / i2
+    if tangential:
+        det = wxx * wyy - wxy * wxy
+        Px = -(wyy * Vx - wxy * Vy) / det
+        Py = -(wxx * Vy - wxy * Vx) / det
+    else:
+        Px = 0.0
+        Py = -Vy / wyy
+    q[IU] += Px
+    q[IV] += Py
+    q[IOMEGA] += (rcx * Py - rcy * Px) / i2
