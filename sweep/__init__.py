@@ -17,5 +17,5 @@ def run_study(study, **options):
 
 def simulate(scene, history=False):
     """Run one scene (a file or a dict of the scene schema); see ``sweep.one_scene.simulate``."""
-    from .one_scene import simulate as _simulate
+    from .runner.simulate import simulate as _simulate
     return _simulate(scene, history=history)

@@ -16,7 +16,8 @@ import numpy as np
 
 from kernels import codes
 
-from . import __version__, grid, refine
+from . import __version__
+from .runner import grid, refine
 
 CONVENTIONS = "CF-1.11"
 PACKAGE = "rigid-block-sweeps"

@@ -13,12 +13,12 @@ from contextlib import ExitStack
 from functools import partial
 from pathlib import Path
 
-from .cli import EXIT_BAD_INPUT
-from .plot_limits import figure_limits
-from .plot_map import figure_map
-from .plot_histories import figure_history
-from .plot_records import figure_record_map, figure_summary
-from .plot_sweeps import figure_boundaries, figure_plane
+from .io.problems import EXIT_BAD_INPUT
+from .plots.histories import figure_history
+from .plots.limits import figure_limits
+from .plots.map import figure_map
+from .plots.records import figure_record_map, figure_summary
+from .plots.sweeps import figure_boundaries, figure_plane
 
 FIGURES = {
     "map": figure_map,  # outcome map: amplitude vs frequency, one panel per other axis value

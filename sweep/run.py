@@ -20,11 +20,12 @@ import numpy as np
 
 from kernels import codes
 
-from . import cf, grid, mpi, refine, store
-from .cli import EXIT_BAD_INPUT
-from .progress import Progress, format_seconds
-from .study import load_study
-from .yamlio import FileProblems
+from . import cf
+from .io.problems import EXIT_BAD_INPUT
+from .io.study_schema import load_study
+from .io.problems import FileProblems
+from .runner import grid, mpi, refine, store
+from .runner.progress import Progress, format_seconds
 
 EXIT_OK, EXIT_ERROR, EXIT_INPUT = 0, 1, EXIT_BAD_INPUT
 SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
@@ -62,7 +63,7 @@ def _refine_text(study):
 
 def _dry_run(study, size, seed, done):
     """Print the cell count and an estimate of the run time from a timed sample of cells."""
-    from .cells import run_chunk, warm_up
+    from .runner.cells import run_chunk, warm_up
 
     n, left = study.n_cells, study.n_cells - len(done)
     if study.refine:
@@ -111,7 +112,7 @@ def _plan(comm, args):
     except store.StoreError as err:
         _say(f"sweep.run: error: {err}", file=sys.stderr)
         return _stop(comm, EXIT_INPUT), None
-    from .cells import warm_up
+    from .runner.cells import warm_up
     common = {"exit": None, "text": study.text, "source": study.source,
               "output": str(study.output), "parts": str(parts.directory)}
     if study.refine:  # rounds are dealt one by one (_run_refine)
@@ -242,7 +243,7 @@ def _run(comm, args):
     if rank == 0:
         plans, study = _plan(comm, args)
     else:  # while rank 0 checks the study: load the kernel if it is cached, else numba only
-        from .cells import kernel_cached, warm_up
+        from .runner.cells import kernel_cached, warm_up
         warm = kernel_cached()
         if warm:
             warm_up()

@@ -4,8 +4,8 @@ import argparse
 import json
 import sys
 
-from .cli import reported_problems
-from .schema import load_scene, resolve_scene
+from .io.problems import reported
+from .io.scene_schema import load_scene, resolve_scene
 
 
 def main(argv=None):
@@ -16,10 +16,10 @@ def main(argv=None):
     parser.add_argument("--animate", metavar="GIF", help="the body on the moving floor")
     parser.add_argument("--history", metavar="NC", help="write the time history (netCDF)")
     args = parser.parse_args(argv)
-    with reported_problems(args.scene):
+    with reported(args.scene):
         resolved = resolve_scene(load_scene(args.scene))
     from kernels import run_scene
-    from .one_scene import to_json_dict
+    from .runner.simulate import to_json_dict
     want_history = bool(args.plot or args.animate or args.history)
     result = run_scene(resolved, history=want_history)
     if want_history:
@@ -30,10 +30,10 @@ def main(argv=None):
             write_netcdf(ds, args.history)
         title = f"{args.scene}: {result.status}"
         if args.plot:
-            from .plot_scene import draw_scene
+            from .plots.scene import draw_scene
             draw_scene(ds, args.plot, title)
         if args.animate:
-            from .plot_scene import animate_scene
+            from .plots.scene import animate_scene
             animate_scene(ds, args.animate, args.scene)
     if args.json:
         json.dump(to_json_dict(result), sys.stdout, indent=1)

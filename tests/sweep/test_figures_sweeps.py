@@ -10,8 +10,10 @@ import math
 import numpy as np
 import pytest
 
-from sweep import classify, plot, plot_histories, plot_sweeps
-from sweep.run import run_study
+from sweep import plot, run_study
+from sweep.paper import classify
+from sweep.plots import histories as plot_histories
+from sweep.plots import sweeps as plot_sweeps
 
 G = 9.80665
 ALPHA = math.atan(1 / 3)          # slenderness of a block with b/h = 1/3

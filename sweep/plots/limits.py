@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
-from . import criteria  # noqa: E402
+from ..paper import criteria  # noqa: E402
 
 BREADTHS_CM = (5, 10, 20, 50, 100)  # one curve per breadth B [cm]
 H_MAX_CM = 1000.0  # heights drawn from H = B (a cube's face) to this [cm]

@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 
-from .schema import apply_overrides
-from .units import parse_quantity
+from ..io.scene_schema import apply_overrides
+from ..io.units import parse_quantity
 
 # The contact friction coefficients that the ``mu`` axis sets together.
 MU_PATHS = ("contact.mu_s", "contact.mu_k", "contact.mu_edge_s", "contact.mu_edge_k")

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import criteria
+from ..paper import criteria
 from .units import fixed_factor
 
 BUNDLED = ("elcentro1940_ns", "elcentro1940_ew", "elcentro1940_ud", "taft1952_ew_s69e")

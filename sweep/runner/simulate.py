@@ -3,7 +3,7 @@
 The result carries the JSON fields of DESIGN.md section 4 as attributes and, when asked, the
 history as an xarray Dataset (``history_dataset``).
 """
-from .schema import load_scene, resolve_scene
+from ..io.scene_schema import load_scene, resolve_scene
 
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
              "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
@@ -20,7 +20,7 @@ def simulate(scene, history=False):
     resolved = resolve_scene(load_scene(scene))
     result = run_scene(resolved, history=history)
     if history:
-        from .history import history_dataset
+        from ..history import history_dataset
         result = result._replace(history=history_dataset(result.history, resolved))
     return result
 

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__, cf
+from .. import __version__, cf
 from .cells import kernel_digest
 
 MANIFEST = "manifest.json"

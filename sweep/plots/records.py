@@ -26,9 +26,10 @@ from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-from . import criteria, records, units  # noqa: E402
-from .plot_limits import plain_log_axis  # noqa: E402
-from .plot_map import COLOURS, _edges  # noqa: E402
+from ..io import records, units  # noqa: E402
+from ..paper import criteria  # noqa: E402
+from .limits import plain_log_axis  # noqa: E402
+from .map import COLOURS, _edges  # noqa: E402
 
 # Table 5 of the paper: record -> peak acceleration [m/s^2], velocity [m/s], displacement [m]
 TABLE5 = {

@@ -20,7 +20,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .study import Dim
+from ..io.study_schema import Dim
 
 BRACKETED, NEVER_OVERTURNED, OVERTURNED_AT_START, FAILED = 0, 1, 2, 3
 BRACKET_NAMES = ("bracketed", "never_overturned", "overturned_at_start", "simulation_failed")

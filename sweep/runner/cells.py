@@ -16,8 +16,10 @@ import numpy as np
 import kernels
 from kernels import api, codes
 
-from . import cf, criteria, grid
-from .schema import load_scene, resolve_scene
+from .. import cf
+from ..io.scene_schema import load_scene, resolve_scene
+from ..paper import criteria
+from . import grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},

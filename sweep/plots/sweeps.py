@@ -19,9 +19,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from . import classify, criteria, units  # noqa: E402
-from .plot_limits import plain_log_axis  # noqa: E402
-from .schema import HOLD_DIMENSIONS  # noqa: E402
+from ..io import units  # noqa: E402
+from ..io.scene_schema import HOLD_DIMENSIONS  # noqa: E402
+from ..paper import classify, criteria  # noqa: E402
+from .limits import plain_log_axis  # noqa: E402
 
 HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three symbols
     "acceleration": {"marker": "o", "color": "tab:red"},

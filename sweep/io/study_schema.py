@@ -1,15 +1,14 @@
 """Study files (DESIGN.md section 5): a base scene, the axes to vary, zip groups, the output.
 
 ``load_study`` reads a YAML file (or takes a dict), checks it and, unless told not to, every
-cell's scene; all problems are reported at once as :class:`~sweep.yamlio.FileProblems` with
+cell's scene; all problems are reported at once as :class:`~sweep.io.problems.FileProblems` with
 dotted paths (``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).
 A problem that a cell's scene shows because of an axis value is reported once, at that value
 (``grid.amplitude[3]``).  An optional ``refine: {axis, tolerance}`` asks for the overturning
-boundary along one axis by bisection (``sweep.refine``).  Coordinates are kept in SI units,
+boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are kept in SI units,
 except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as the
 normalized levels they are (CF units ``1``).
 """
-import difflib
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,9 +18,11 @@ import yaml
 
 from kernels.api import scene_row
 
-from . import grid, units
-from .schema import load_scene, resolve_scene
-from .yamlio import MISSING, FileProblems, Problem, join_path, parse_yaml, read_text
+from ..runner import grid
+from . import units
+from .scene_schema import load_scene, resolve_scene
+from .problems import MISSING, FileProblems, Problem, closest, join_path, unknown_key
+from .yamlio import parse_yaml, read_text
 
 KEYS = ("name", "title", "description", "scene", "grid", "zip", "refine", "output")
 REFINE_KEYS = ("axis", "tolerance")
@@ -138,6 +139,12 @@ class Study:
 
 # --- axes -------------------------------------------------------------------------------------
 
+def _unknown_keys(mapping, allowed, path, problems):
+    """A problem for every key of ``mapping`` that is not ``allowed``."""
+    problems += [unknown_key(join_path(path, key), str(key), value, allowed)
+                 for key, value in mapping.items() if key not in allowed]
+
+
 def _number(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
@@ -157,11 +164,7 @@ def _check_unit(unit, path, problems):
 def _spec_values(spec, path, problems):
     """Raw values and unit of a mapping ``{start, stop, num, spacing, unit}`` or ``{values}``."""
     before = len(problems)
-    for key in spec:
-        if key not in SPEC_KEYS:
-            close = difflib.get_close_matches(str(key), SPEC_KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(join_path(path, key), spec[key], f"unknown key{hint}"))
+    _unknown_keys(spec, SPEC_KEYS, path, problems)
     unit = spec.get("unit")
     if unit is not None:
         unit = _check_unit(unit, join_path(path, "unit"), problems) and unit.strip()
@@ -306,8 +309,8 @@ def _axis_name_ok(name, path, problems):
         return True
     if isinstance(name, str) and "." in name and name.split(".")[0] in grid.SCENE_SECTIONS:
         return True
-    close = difflib.get_close_matches(str(name), list(grid.AXES), n=1)
-    hint = f"did you mean '{close[0]}'? " if close else ""
+    close = closest(name, grid.AXES)
+    hint = f"did you mean '{close}'? " if close else ""
     problems.append(Problem(path, name, f"unknown axis; {hint}axes are "
                                         f"{', '.join(grid.AXES)} or a dotted scene path "
                                         "such as excitation.horizontal.f_stop"))
@@ -432,11 +435,7 @@ def _refine(raw, axes, groups, names, problems):
                                                "tolerance: <bracket width>}"))
         return None
     before = len(problems)
-    for key in raw:
-        if key not in REFINE_KEYS:
-            close = difflib.get_close_matches(str(key), REFINE_KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(join_path("refine", key), raw[key], f"unknown key{hint}"))
+    _unknown_keys(raw, REFINE_KEYS, "refine", problems)
     for key in REFINE_KEYS:
         if key not in raw:
             problems.append(Problem(join_path("refine", key), MISSING, "required"))
@@ -567,11 +566,7 @@ def load_study(source, *, text=None, output=None, check_cells=True):
     if problems or raw is None or not isinstance(raw, dict):
         raise FileProblems(problems, src)
 
-    for key in raw:
-        if key not in KEYS:
-            close = difflib.get_close_matches(str(key), KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(str(key), raw[key], f"unknown key{hint}"))
+    _unknown_keys(raw, KEYS, "", problems)
     name = raw.get("name", Path(src).stem if src else "study")
     if not isinstance(name, str) or not name.strip():
         problems.append(Problem("name", name, "must be a non-empty string"))

@@ -16,9 +16,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from . import classify, criteria, grid  # noqa: E402
-from .plot_scene import GAL  # noqa: E402
-from .plot_sweeps import POINT_P, _datasets, value_text  # noqa: E402
+from ..paper import classify, criteria  # noqa: E402
+from ..runner import grid  # noqa: E402
+from .scene import GAL  # noqa: E402
+from .sweeps import POINT_P, _datasets, value_text  # noqa: E402
 
 Panel = namedtuple("Panel", "kind holds steady title")
 Panel.__doc__ = """A history to draw: the rocking ``kind``, the sweeps (``holds``) it may come

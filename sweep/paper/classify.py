@@ -36,11 +36,11 @@ import numpy as np
 
 from kernels import run_scene
 
-from . import grid
+from ..history import history_dataset
+from ..io.scene_schema import load_scene, resolve_scene
+from ..io.study_schema import load_study
+from ..runner import grid
 from .criteria import body_constants
-from .history import history_dataset
-from .schema import load_scene, resolve_scene
-from .study import load_study
 
 KINDS = ("in_phase", "inverse_phase", "subharmonic", "irregular")
 EPSILON = 0.05      # |θ|/α above which the body counts as tilted to one side (step 1)
