@@ -5,14 +5,11 @@ Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A
 height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the slender-body
 rules of Eqs. (17), (19), (21) dashed.
 """
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
-
-from ..paper import criteria  # noqa: E402
+from ..paper import criteria
+from .style import plain_log_axis
 
 BREADTHS_CM = (5, 10, 20, 50, 100)  # one curve per breadth B [cm]
 H_MAX_CM = 1000.0  # heights drawn from H = B (a cube's face) to this [cm]
@@ -38,13 +35,6 @@ def limit_curves(B_cm, H_max_cm=H_MAX_CM, num=SAMPLES):
               "d": np.full_like(H, 100 * criteria.ishiyama_displacement_approx(B)),
               "T": criteria.critical_period_approx(H)}
     return H_cm, exact, approx
-
-
-def plain_log_axis(axis):
-    """Log-scale ticks at 1, 2, 5 x 10^k written as plain numbers (0.2, 50, 100)."""
-    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 PANELS = (  # key, y label, equation of the exact curve, of the dashed rule
