@@ -7,15 +7,15 @@ __version__ = "0.1.0"
 
 
 def run_study(study, **options):
-    """Run a study in this process and return its xarray Dataset (see ``sweep.run.run_study``).
+    """Run a study in this process and return its xarray Dataset (``runner.launch.run_study``).
 
     ``study`` is a study file or a dict of the same schema; nothing is written.
     """
-    from .run import run_study as _run_study  # heavy imports only when called
+    from .runner.launch import run_study as _run_study  # heavy imports only when called
     return _run_study(study, **options)
 
 
 def simulate(scene, history=False):
-    """Run one scene (a file or a dict of the scene schema); see ``sweep.one_scene.simulate``."""
+    """Run one scene (a file or a dict of the scene schema); see ``sweep.runner.simulate``."""
     from .runner.simulate import simulate as _simulate
     return _simulate(scene, history=history)

@@ -82,6 +82,12 @@ def launched(environ=None):
     return any(var in environ for var in SIZE_VARS + RANK_VARS)
 
 
+def first_process(environ=None):
+    """True unless a launcher's variables name a rank other than 0 (one message per job)."""
+    environ = os.environ if environ is None else environ
+    return all(environ.get(v, "0") == "0" for v in RANK_VARS)
+
+
 def _threads_off():
     """One thread per rank: MPI is the only parallelism (numba, OpenMP, BLAS)."""
     for var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
