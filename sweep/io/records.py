@@ -142,7 +142,7 @@ def read_two_column(path, units="m/s^2"):
     path : str or Path
     units : str
         Unit of the acceleration column: ``m/s^2`` (default), ``g``, ``gal`` or any fixed
-        acceleration unit of :mod:`sweep.units`.
+        acceleration unit of :mod:`sweep.io.units`.
 
     Returns
     -------

@@ -2,9 +2,9 @@
 
 ``run_chunk`` knows nothing of ranks or files (the mpi4py demos' ``mandelbrot_line``): it
 builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
-(``schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the whole chunk
-in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell arrays of
-``cf.VARIABLES``.
+(``io.scene_schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the
+whole chunk in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell
+arrays of ``cf.VARIABLES``.
 """
 import hashlib
 import os

@@ -201,7 +201,7 @@ def cell_overrides(study, index):
 
 
 def cell_scene(study, index):
-    """The raw scene dict of cell ``index`` (to be checked by ``schema.load_scene``)."""
+    """The raw scene dict of cell ``index`` (to be checked by ``io.scene_schema.load_scene``)."""
     return apply_overrides(study.scene, cell_overrides(study, index))
 
 
