@@ -87,7 +87,7 @@ class Dim:
 
 @dataclass(frozen=True)
 class Refine:
-    """Bisection of the overturning boundary along one axis (``refine:``, see ``sweep.runner.refine``).
+    """Bisection of the overturning boundary along one axis (``refine:``, ``runner.refine``).
 
     Attributes
     ----------

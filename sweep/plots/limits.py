@@ -1,9 +1,9 @@
 """Fig. 17 of Ishiyama (1982): lower limits to overturn a homogeneous rectangular body.
 
-Closed forms only (``sweep.paper.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16), d_o of
-Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11) against the
-height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the slender-body
-rules of Eqs. (17), (19), (21) dashed.
+Closed forms only (``sweep.paper.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16),
+d_o of Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11)
+against the height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the
+slender-body rules of Eqs. (17), (19), (21) dashed.
 """
 import matplotlib.pyplot as plt
 import numpy as np
