@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..paper import criteria
-from .style import plain_log_axis
+from .style import log_axes
 
 BREADTHS_CM = (5, 10, 20, 50, 100)  # one curve per breadth B [cm]
 H_MAX_CM = 1000.0  # heights drawn from H = B (a cube's face) to this [cm]
@@ -56,10 +56,7 @@ def figure_limits():
             if rule:
                 ax.plot(H_cm, approx[key], color=colour, lw=1.0, ls="--")
     for ax, (key, label, eq, rule) in zip(axes.flat, PANELS):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        plain_log_axis(ax.xaxis)
-        plain_log_axis(ax.yaxis)
+        log_axes(ax)
         ax.set_xlabel("height of the body H [cm]")
         ax.set_ylabel(label)
         text = f"solid: Eq. {eq}" + (f"\ndashed: Eq. {rule}" if rule else "")

@@ -9,11 +9,10 @@ import itertools
 
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
-from .style import OUTCOME_COLOURS, cell_edges
+from .style import OUTCOME_COLOURS, cell_edges, outcome_colours
 
 MAX_PANELS = 6  # more combinations of the other axes than this: the first ones are drawn
 
@@ -61,9 +60,7 @@ def draw_outcome_map(ax, da, x, y, legend=True):
     da = da.transpose(y, x)
     xs, ys = da[x].values, da[y].values
     logx, logy = _log_spaced(xs), _log_spaced(ys)
-    codes = sorted(OUTCOME_COLOURS)
-    cmap = ListedColormap([OUTCOME_COLOURS[c] for c in codes])
-    norm = BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
+    cmap, norm = outcome_colours()
     ax.pcolormesh(cell_edges(xs, logx), cell_edges(ys, logy), da.values, cmap=cmap, norm=norm,
                   edgecolors="white", linewidth=0.3)
     for log, axis, scale in ((logx, ax.xaxis, ax.set_xscale), (logy, ax.yaxis, ax.set_yscale)):
@@ -80,7 +77,7 @@ def draw_outcome_map(ax, da, x, y, legend=True):
                     textcoords="offset points", fontsize=8)
     if legend:
         meanings = da.attrs.get("flag_meanings", "failed no_rocking rocked overturned").split()
-        values = list(np.atleast_1d(da.attrs.get("flag_values", codes)))
+        values = list(np.atleast_1d(da.attrs.get("flag_values", sorted(OUTCOME_COLOURS))))
         present = set(np.unique(da.values).tolist())
         handles = [Patch(color=OUTCOME_COLOURS[int(v)], label=m.replace("_", " "))
                    for v, m in zip(values, meanings) if int(v) in present or int(v) >= 0]

@@ -19,13 +19,12 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import yaml
-from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from ..io import records, units
 from ..paper import criteria
-from .style import OUTCOME_COLOURS, cell_edges, plain_log_axis
+from .style import OUTCOME_COLOURS, cell_edges, log_axes, outcome_colours
 
 # Table 5 of the paper: record -> peak acceleration [m/s^2], velocity [m/s], displacement [m]
 TABLE5 = {
@@ -194,15 +193,10 @@ def draw_bodies(ax, da):
     # cell edges in log space; cells are parallelograms on log axes, drawn exactly
     edges = np.meshgrid(*(cell_edges(da[d].values, log=True) for d in names), indexing="ij")
     H_edges, HB_edges = _height_and_slenderness(**dict(zip(names, edges)))
-    codes = np.array(sorted(OUTCOME_COLOURS))
-    cmap = ListedColormap([OUTCOME_COLOURS[int(c)] for c in codes])
-    norm = BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
+    cmap, norm = outcome_colours()
     ax.pcolormesh(100 * H_edges, HB_edges, da.transpose(*names).values, cmap=cmap, norm=norm,
                   edgecolors="face", linewidth=0.0)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
+    log_axes(ax)
     ax.set_xlabel("height of the body H [cm]")
     ax.set_ylabel("height / breadth H/B")
 
@@ -307,10 +301,7 @@ def figure_summary(ds):
         ax.scatter([], [], marker=marker, color="0.6", label=f"{name} ({source})")
     ax.axvline(1.0, **CRITERIA_STYLE["acceleration"])
     ax.axhline(1.0, **CRITERIA_STYLE["velocity"])
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
+    log_axes(ax)
     ax.set_xlabel("PGA / a_o   (a_o = (B/H) g, Eq. 14)")
     ax.set_ylabel("PGV / v_o   (v_o = 0.4 v_H, Eq. 16)")
     for letter, (xt, yt) in {"A": (0.15, 0.5), "B": (0.62, 0.06), "C": (0.62, 0.93)}.items():

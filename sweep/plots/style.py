@@ -5,6 +5,7 @@ Only matplotlib's object interface is used here and in the figure modules; the b
 caller's (``python -m sweep.plot`` and ``python -m sweep.scene`` choose ``Agg``).
 """
 import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..io.files import replacing
@@ -30,6 +31,21 @@ def plain_log_axis(axis):
     axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
     axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
     axis.set_minor_formatter(NullFormatter())
+
+
+def log_axes(ax):
+    """Both axes of ``ax`` logarithmic, ticks as plain numbers."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    plain_log_axis(ax.xaxis)
+    plain_log_axis(ax.yaxis)
+
+
+def outcome_colours():
+    """Colormap and norm that draw each outcome code in its colour (for ``pcolormesh``)."""
+    codes = sorted(OUTCOME_COLOURS)
+    cmap = ListedColormap([OUTCOME_COLOURS[c] for c in codes])
+    return cmap, BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
 
 
 def as_list(data):

@@ -17,7 +17,7 @@ from matplotlib.lines import Line2D
 
 from ..paper.criteria import POINT_P
 from ..paper.plane import lowest_points, sweep_cells
-from .style import as_list, plain_log_axis
+from .style import as_list, log_axes
 
 HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three symbols
     "acceleration": {"marker": "o", "color": "tab:red"},
@@ -58,12 +58,9 @@ def draw_criteria(ax):
 
 def plane_axes(ax):
     """Log axes of the normalized plane with plain tick labels."""
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    log_axes(ax)
     ax.set_xlim(*V_LIMITS)
     ax.set_ylim(*A_LIMITS)
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
     ax.set_xlabel("normalized velocity: velocity amplitude / v_H")
     ax.set_ylabel("normalized acceleration: acceleration amplitude / ((B/H) g)")
     ax.grid(True, which="major", color="0.9", lw=0.6)
