@@ -4,7 +4,7 @@ bodies files.
 Every check of a file (YAML syntax, duplicate keys, pydantic models, cross-field rules)
 produces :class:`Problem` s: a dotted ``path`` (``grid.amplitude.num``, ``bodies[2].B``), the
 ``value`` given and a ``message``.  :class:`FileProblems` carries them and formats one per line;
-:func:`from_validation` turns pydantic's errors into problems, :func:`unknown_key` writes the
+:func:`validation_problems` turns pydantic's errors into problems, :func:`unknown_key` writes the
 "unknown key; did you mean" message, and :func:`reported` turns problems into a message on
 stderr and exit status 2 in the command-line entry points.
 """
@@ -83,15 +83,32 @@ def unknown_key(path, key, value, names):
 
 
 class FieldError(ValueError):
-    """A check inside a model that blames one ``field`` of it (a cross-field rule)."""
+    """A check inside a model that blames one ``field`` of it (a cross-field rule).
 
-    def __init__(self, field, value, message):
+    ``field`` is a key or a tuple of keys below the model (``("values", 2)``); ``also`` are
+    more ``FieldError`` s found by the same check, reported with it.
+    """
+
+    def __init__(self, field, value, message, also=()):
         super().__init__(message)
-        self.field, self.value = field, value
+        self.field, self.value, self.also = field, value, tuple(also)
+
+    @classmethod
+    def several(cls, errors):
+        """One exception carrying every ``(field, value, message)`` of ``errors``."""
+        first, *rest = errors
+        return cls(*first, also=[cls(*e) for e in rest])
 
 
-def from_validation(error, path, names, tags=None):
-    """A :class:`Problem` from one pydantic error dict.
+def _blamed(path, error):
+    """The problem of a :class:`FieldError` raised in the model at ``path``."""
+    for key in error.field if isinstance(error.field, tuple) else (error.field,):
+        path = join_path(path, key)
+    return Problem(path, error.value, str(error))
+
+
+def _from_error(error, path, names, tags=None):
+    """The problems (one, or those of a :class:`FieldError`) of one pydantic error dict.
 
     Parameters
     ----------
@@ -107,18 +124,18 @@ def from_validation(error, path, names, tags=None):
     value, kind = error.get("input", MISSING), error["type"]
     cause = (error.get("ctx") or {}).get("error")
     if isinstance(cause, FieldError):
-        return Problem(join_path(path, cause.field), cause.value, str(cause))
+        return [_blamed(path, e) for e in (cause, *cause.also)]
     if kind == "missing":
-        return Problem(path, MISSING, "required")
+        return [Problem(path, MISSING, "required")]
     if kind == "extra_forbidden":
-        return unknown_key(path, str(error["loc"][-1]), value, names)
+        return [unknown_key(path, str(error["loc"][-1]), value, names)]
     if kind in ("union_tag_not_found", "union_tag_invalid"):
         tag = value.get("kind", MISSING) if isinstance(value, dict) else value
-        return Problem(join_path(path, "kind"), tag,
-                       "required" if tag is MISSING else
-                       f"unknown kind; expected one of: {', '.join(tags or ())}")
+        return [Problem(join_path(path, "kind"), tag,
+                        "required" if tag is MISSING else
+                        f"unknown kind; expected one of: {', '.join(tags or ())}")]
     message = error["msg"].removeprefix("Value error, ").replace("Input should be", "must be")
-    return Problem(path, value, message)
+    return [Problem(path, value, message)]
 
 
 def validation_problems(error, names, dotted=None, tags=None):
@@ -135,8 +152,8 @@ def validation_problems(error, names, dotted=None, tags=None):
         The accepted values of a discriminated union's ``kind``.
     """
     dotted = dotted or _joined
-    return [from_validation(e, dotted(e["loc"]), names, tags)
-            for e in _unknown_first(error.errors(include_url=False))]
+    return [problem for e in _unknown_first(error.errors(include_url=False))
+            for problem in _from_error(e, dotted(e["loc"]), names, tags)]
 
 
 def _joined(loc):
