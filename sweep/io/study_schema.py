@@ -1,13 +1,16 @@
 """Study files (DESIGN.md section 5): a base scene, the axes to vary, zip groups, the output.
 
-``load_study`` reads a YAML file (or takes a dict), checks it and, unless told not to, every
-cell's scene; all problems are reported at once as :class:`~sweep.io.problems.FileProblems` with
-dotted paths (``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).
-A problem that a cell's scene shows because of an axis value is reported once, at that value
+``load_study`` reads a YAML file (or takes a dict) and checks it in two layers: the pydantic
+models ``StudyFile``, ``RangeSpec`` and ``RefineSpec`` check its sections and keys, then the
+axes, zip groups and refined axis are checked against each other and the base scene, and,
+unless told not to, every cell's scene.  All problems are reported at once, through the shared
+formatter, as :class:`~sweep.io.problems.FileProblems` with dotted paths
+(``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).  A problem that a
+cell's scene shows because of an axis value is reported once, at that value
 (``grid.amplitude[3]``).  An optional ``refine: {axis, tolerance}`` asks for the overturning
-boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are kept in SI units,
-except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as the
-normalized levels they are (CF units ``1``).
+boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are kept in SI
+units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as
+the normalized levels they are (CF units ``1``).
 """
 import math
 from dataclasses import dataclass
