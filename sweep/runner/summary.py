@@ -18,10 +18,12 @@ MAX_LISTED = 20  # failed cells listed in the summary
 
 
 def say(*text, file=sys.stdout):
+    """Print at once (ranks share the terminal; a buffered line would come late)."""
     print(*text, file=file, flush=True)
 
 
 def shape_text(study):
+    """'amplitude 9 x frequency 5': the study's dimensions and sizes."""
     return " x ".join(f"{dim.name} {dim.size}" for dim in study.dims)
 
 
@@ -43,7 +45,7 @@ def refine_text(study):
 
 def dry_run(study, size, seed, done):
     """Print the cell count and an estimate of the run time from a timed sample of cells."""
-    from .cells import run_chunk, warm_up
+    from .cells import run_chunk, warm_up  # the kernel, only when a dry run is asked for
 
     n, left = study.n_cells, study.n_cells - len(done)
     if study.refine:
