@@ -1,7 +1,11 @@
 """Studies of rigid blocks rocking, sliding and overturning on a shaking floor (Ishiyama 1982).
 
-Scene and study files, grids, the MPI runner, the netCDF store, closed-form criteria and plots
-around the ``kernels`` package.
+Around the ``kernels`` package, one folder per layer: ``io`` (YAML, units, the scene, study and
+bodies schemas, records, problems, atomic writes), ``runner`` (one scene; grids of cells over
+MPI ranks, part files, refine, progress), ``paper`` (criteria, estimate, classification, the
+normalized plane), ``plots`` (figures from datasets) and ``cf`` (the metadata of every
+dataset).  ``run``, ``scene``, ``plot`` and ``estimate`` are the ``python -m`` commands;
+:func:`simulate` and :func:`run_study` the Python entry points.
 """
 __version__ = "0.1.0"
 
