@@ -18,9 +18,9 @@ from typing import Annotated, Optional, Union
 from pydantic import (BeforeValidator, Field, StrictBool, StrictFloat, StrictInt, StrictStr,
                       ValidationError)
 
-from .problems import MISSING, FileProblems, Problem, validation_problems
+from .problems import FileProblems, validation_problems
 from .scene_schema import Length, StrictModel
-from .yamlio import read_yaml
+from .yamlio import read_yaml, top_level_problems
 
 
 @dataclass(frozen=True)
@@ -81,9 +81,9 @@ def load_bodies(source):
     """
     raw = source if isinstance(source, dict) else read_yaml(source)
     name = None if isinstance(source, dict) else str(source)
-    if not isinstance(raw, dict):
-        raise FileProblems([Problem("(file)", MISSING if raw is None else raw,
-                                    "must be a mapping with a list 'bodies'")], name)
+    top = top_level_problems(raw, [], "bodies file", "site, bodies")
+    if top:
+        raise FileProblems(top, name)
     try:
         checked = BodiesFile.model_validate(raw)
     except ValidationError as err:

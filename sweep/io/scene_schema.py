@@ -21,7 +21,7 @@ from . import records, units
 from .units import Quantity
 from .problems import (MISSING, FieldError, FileProblems, Problem, join_path,
                        validation_problems)
-from .yamlio import parse_yaml, read_text
+from .yamlio import parse_yaml, read_text, top_level_problems
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 KINDS = ("none", "sine", "sweep", "record", "pulse")
@@ -287,11 +287,9 @@ def load_scene(source, *, base_dir=None):
         name = source
         raw, problems = parse_yaml(read_text(source))
         base_dir = Path(source).parent if base_dir is None else base_dir
-    if raw is None and not problems:
-        problems.append(Problem("(file)", MISSING, "the scene is empty"))
-    elif raw is not None and not isinstance(raw, dict):
-        problems.append(Problem("(file)", raw, "a scene must be a mapping of body, contact, ..."))
-    elif raw is not None:
+    top = top_level_problems(raw, problems, "scene", "body, contact")
+    problems += top
+    if raw is not None and not top:
         try:
             scene = Scene.model_validate(raw, context={"base_dir": base_dir})
         except ValidationError as err:

@@ -30,7 +30,7 @@ from .scene_schema import load_scene, resolve_scene
 from .problems import (MISSING, FieldError, FileProblems, Problem, closest, join_path,
                        validation_problems)
 from .scene_schema import StrictModel
-from .yamlio import parse_yaml, read_text
+from .yamlio import parse_yaml, read_text, top_level_problems
 
 SPACINGS = ("linear", "log")
 OUTPUT_DIR = "results"  # default output: results/<name>.nc, relative to the working directory
@@ -632,11 +632,8 @@ def load_study(source, *, text=None, output=None, check_cells=True):
         text = read_text(source) if text is None else text
         raw, problems = parse_yaml(text)
         base_dir = Path(source).parent
-    if raw is None and not problems:
-        problems.append(Problem("(file)", MISSING, "the study is empty"))
-    elif raw is not None and not isinstance(raw, dict):
-        problems.append(Problem("(file)", raw, "a study must be a mapping of scene, grid, ..."))
-    if problems or raw is None or not isinstance(raw, dict):
+    problems += top_level_problems(raw, problems, "study", "scene, grid")
+    if problems:
         raise FileProblems(problems, src)
 
     try:

@@ -96,3 +96,16 @@ def read_yaml(path):
     if problems:
         raise FileProblems(problems, path)
     return data
+
+
+def top_level_problems(data, problems, what, sections):
+    """The problem of a file whose content is empty or not a mapping (none if it is one).
+
+    ``data, problems`` come from :func:`parse_yaml`; ``what`` names the file ('scene'),
+    ``sections`` its first sections ('body, contact'), for the message.
+    """
+    if data is None and not problems:
+        return [Problem("(file)", MISSING, f"the {what} is empty")]
+    if data is not None and not isinstance(data, dict):
+        return [Problem("(file)", data, f"a {what} must be a mapping of {sections}, ...")]
+    return []
