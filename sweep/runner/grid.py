@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ..io.scene_schema import apply_overrides
+from ..io.scene_schema import HOLD_DIMENSIONS, apply_overrides
 from ..io.units import parse_quantity
 
 # The contact friction coefficients that the ``mu`` axis sets together.
@@ -62,8 +62,6 @@ FIELD_DIMENSIONS = {
     "law": "name", "hold": "name", "shape": "name",
 }
 SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver")
-HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
-                   "displacement": "length"}
 
 DEFAULT_SEED = 0
 MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seconds at worst
