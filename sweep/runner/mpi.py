@@ -19,6 +19,7 @@ import numpy as np
 from kernels import codes
 
 POLL = 0.02  # s between tests of a pending message or request
+FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
 TAG_PLAN, TAG_PROGRESS = 11, 12
 
 # Variables by which launchers announce the number of ranks (Hydra/MPICH, Intel MPI, Open MPI,
@@ -168,6 +169,7 @@ def abort_on_exception(comm):
         sys.stderr.write(f"sweep.run: rank {comm.Get_rank()} of {comm.Get_size()} failed, "
                          f"aborting the job:\n{traceback.format_exc()}")
         sys.stderr.flush()
+        time.sleep(FORWARD)  # the launcher forwards the traceback before Abort kills the job
         comm.Abort(1)
 
 
