@@ -13,7 +13,7 @@ import numpy as np
 from scipy.stats import binomtest
 
 from kernels import api, codes
-from sweep.schema import load_scene, resolve_scene
+from sweep.io.scene_schema import load_scene, resolve_scene
 
 from . import scipy_rocking
 from .scenes import floor_motion

@@ -1,7 +1,7 @@
 """Markdown tables and number formats of the benchmark report, and atomic file writing."""
 import math
 
-from sweep.store import _write_atomic
+from sweep.io.files import write_atomic
 
 
 def table(header, rows):
@@ -38,10 +38,10 @@ def verdict(met):
 def write_text(path, text):
     """Write a text file atomically (temporary file in the same folder, then rename)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    _write_atomic(path, lambda f: f.write(text.encode()))
+    write_atomic(path, lambda f: f.write(text.encode()))
 
 
 def write_figure(path, fig, dpi=130):
     """Save a matplotlib figure as PNG atomically."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    _write_atomic(path, lambda f: fig.savefig(f, format="png", dpi=dpi))
+    write_atomic(path, lambda f: fig.savefig(f, format="png", dpi=dpi))

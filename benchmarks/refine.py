@@ -21,8 +21,8 @@ from scipy.optimize import brentq
 
 import sweep
 from benchmarks.markdown import table, verdict
-from sweep import criteria
-from sweep.cells import warm_up
+from sweep.paper import criteria
+from sweep.runner.cells import warm_up
 
 # Housner's impact (PHYSICS.md 2.1) and friction enough for rocking without sliding
 CONTACT = {"mu": 0.8, "e_x": 0.0, "e_y": 0.0}

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from sweep.schema import load_scene, resolve_scene
+from sweep.io.scene_schema import load_scene, resolve_scene
 
 from . import references, scipy_rocking
 

@@ -77,8 +77,8 @@ def _launch(command, cwd):
 
 def kernel_cpu_per_cell(study_path):
     """(kernel CPU [s] of each cell, scene-building CPU [s] per cell, outcome codes)."""
-    from sweep import cells
-    from sweep.study import load_study
+    from sweep.io.study_schema import load_study
+    from sweep.runner import cells
 
     study = load_study(study_path)
     ids = np.arange(study.n_cells)

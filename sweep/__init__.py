@@ -1,21 +1,25 @@
 """Studies of rigid blocks rocking, sliding and overturning on a shaking floor (Ishiyama 1982).
 
-Scene and study files, grids, the MPI runner, the netCDF store, closed-form criteria and plots
-around the ``kernels`` package.
+Around the ``kernels`` package, one folder per layer: ``io`` (YAML, units, the scene, study and
+bodies schemas, records, problems, atomic writes), ``runner`` (one scene; grids of cells over
+MPI ranks, part files, refine, progress), ``paper`` (criteria, estimate, classification, the
+normalized plane), ``plots`` (figures from datasets) and ``cf`` (the metadata of every
+dataset).  ``run``, ``scene``, ``plot`` and ``estimate`` are the ``python -m`` commands;
+:func:`simulate` and :func:`run_study` the Python entry points.
 """
 __version__ = "0.1.0"
 
 
 def run_study(study, **options):
-    """Run a study in this process and return its xarray Dataset (see ``sweep.run.run_study``).
+    """Run a study in this process and return its xarray Dataset (``runner.launch.run_study``).
 
     ``study`` is a study file or a dict of the same schema; nothing is written.
     """
-    from .run import run_study as _run_study  # heavy imports only when called
+    from .runner.launch import run_study as _run_study  # heavy imports only when called
     return _run_study(study, **options)
 
 
 def simulate(scene, history=False):
-    """Run one scene (a file or a dict of the scene schema); see ``sweep.one_scene.simulate``."""
-    from .one_scene import simulate as _simulate
+    """Run one scene (a file or a dict of the scene schema); see ``sweep.runner.simulate``."""
+    from .runner.simulate import simulate as _simulate
     return _simulate(scene, history=history)

@@ -1,12 +1,16 @@
-"""The study dataset (DESIGN.md section 6): one metadata table, the Dataset builder, encoding.
+"""Every dataset the package writes (DESIGN.md section 6): one metadata table, the Dataset
+builders, one encoding.
 
-``VARIABLES`` is the single description of every per-cell result: dtype, CF ``units`` and
-``long_name``, flags for integer codes (from ``kernels.codes``) and any extra dimension.
-``cells.run_chunk`` fills arrays of these dtypes; :func:`to_dataset` shapes them onto the
-study's dimensions; :func:`encoding` chooses how they are stored (zlib level 1, no
-``_FillValue`` on integer flags and coordinates).  ``REFINE_VARIABLES`` and
-:func:`refine_dataset` do the same for the boundaries of a refine study (``sweep.refine``).
-xarray is imported only when a Dataset is built.
+The table describes each variable once as a :class:`Variable` (dtype, CF ``units`` and
+``long_name``, flags for integer codes from ``kernels.codes``, extra dimensions, comment), in
+three parts, one per kind of dataset: ``VARIABLES``, the per-cell results of a study
+(``runner.cells.run_chunk`` fills arrays of these dtypes, :func:`to_dataset` shapes them onto
+the study's dimensions); ``REFINE_VARIABLES``, the boundaries of a refine study
+(:func:`refine_dataset`, ``sweep.runner.refine``); ``HISTORY_VARIABLES``, the time history of
+one scene (:func:`history_dataset`).  :func:`variable_attrs` turns an entry into CF attributes
+and :func:`encoding` chooses how every dataset is stored (zlib level 1, no ``_FillValue`` on
+integer flags and coordinates); ``runner.store.write_netcdf`` writes them.  xarray is imported
+only when a Dataset is built.
 """
 import datetime
 import math
@@ -16,7 +20,8 @@ import numpy as np
 
 from kernels import codes
 
-from . import __version__, grid, refine
+from . import __version__
+from .runner import grid, refine
 
 CONVENTIONS = "CF-1.11"
 PACKAGE = "rigid-block-sweeps"
@@ -98,6 +103,23 @@ REFINE_VARIABLES = {
     "coarse_overturned": Variable("int8", "1", "body overturned at the coarse values",
                                   OVERTURNED_FLAGS, dims=(REFINED,)),
 }
+
+
+# The time history of one scene, dimension ``time`` (``python -m sweep.scene --history``).
+MODE_FLAGS = (tuple(range(len(codes.MODE_NAMES))), codes.MODE_NAMES)
+HISTORY_VARIABLES = {
+    "x": Variable("float64", "m", "horizontal position of the centroid relative to the floor"),
+    "y": Variable("float64", "m", "height of the centroid above the floor"),
+    "theta": Variable("float64", "rad", "rotation angle, positive about the left corner"),
+    "u": Variable("float64", "m s-1", "horizontal velocity of the centroid relative to the "
+                                      "floor"),
+    "v": Variable("float64", "m s-1", "vertical velocity of the centroid"),
+    "omega": Variable("float64", "rad s-1", "angular velocity"),
+    "a_x": Variable("float64", "m s-2", "horizontal floor acceleration"),
+    "a_y": Variable("float64", "m s-2", "vertical floor acceleration"),
+    "mode": Variable("int8", "1", "motion type", MODE_FLAGS),
+}
+TIME = ("time", {"units": "s", "long_name": "time", "axis": "T"})
 
 
 def empty(name, n):
@@ -286,6 +308,31 @@ def refine_dataset(study, arrays, *, rounds, history=None):
     attrs = {**global_attrs(study, history),
              **refine_attrs(study, rounds, int(np.sum(arrays["simulations"])))}
     return xr.Dataset(data, coords=_coords(study), attrs=attrs)
+
+
+def history_dataset(history, scene, source=None):
+    """The time history of one scene: a Dataset with dimension ``time``.
+
+    Parameters
+    ----------
+    history : dict of str to ndarray, shape (n,)
+        The kernel's history (``t`` and every name of ``HISTORY_VARIABLES``).
+    scene : dict
+        The resolved scene (its body's ``B`` and ``H`` become attributes).
+    source : str, optional
+        The scene file, for the ``source`` attribute.
+    """
+    import xarray as xr
+
+    data = {name: ("time", np.asarray(history[name], dtype=var.dtype),
+                   variable_attrs(name, HISTORY_VARIABLES))
+            for name, var in HISTORY_VARIABLES.items()}
+    attrs = {"Conventions": CONVENTIONS, "title": "rigid block on a moving floor: history",
+             "B": scene["body"]["B"], "H": scene["body"]["H"]}
+    if source is not None:
+        attrs["source"] = source
+    return xr.Dataset(data, coords={TIME[0]: (TIME[0], np.asarray(history["t"]), TIME[1])},
+                      attrs=attrs)
 
 
 def encoding(ds):

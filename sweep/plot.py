@@ -1,24 +1,40 @@
 """Figures from a study's dataset: ``python -m sweep.plot RESULT.nc --figure NAME -o out.png``.
 
-``FIGURES`` maps a figure name to a function ``(ds, **options) -> matplotlib Figure`` that
-reads only the Dataset; a new figure is one more entry.  Figures of ``WITHOUT_DATASET`` are
-closed forms and take no RESULT (``python -m sweep.plot --figure fig17 -o fig17.png``).
-Figures of ``SEVERAL`` take one or more RESULTs (e.g. one sweep study per kind of sweep) and
-receive the list of their Datasets.
+``FIGURES`` maps a figure name to a function ``(ds, **options) -> matplotlib Figure``; a new
+figure is one more entry.  The drawing functions (``sweep.plots``) read only what they are
+given; Figs 11-16 need the rocking before each overturning, which this command first computes
+from the datasets (``sweep.paper.classify``: the overturned cells simulated again) and hands
+to the drawing.  Figures of ``WITHOUT_DATASET`` are closed forms and take no RESULT
+(``python -m sweep.plot --figure fig17 -o fig17.png``).  Figures of ``SEVERAL`` take one or
+more RESULTs (e.g. one sweep study per kind of sweep) and receive the list of their Datasets.
+The backend is ``Agg``, chosen by :func:`main`, never on import of ``sweep.plots``.
 """
 import argparse
-import os
 import sys
 from contextlib import ExitStack
 from functools import partial
 from pathlib import Path
 
-from .cli import EXIT_BAD_INPUT
-from .plot_limits import figure_limits
-from .plot_map import figure_map
-from .plot_histories import figure_history
-from .plot_records import figure_record_map, figure_summary
-from .plot_sweeps import figure_boundaries, figure_plane
+from .io.problems import EXIT_BAD_INPUT
+from .paper import classify
+from .plots.histories import figure_history
+from .plots.limits import figure_limits
+from .plots.map import figure_map
+from .plots.records import figure_record_map, figure_summary
+from .plots.style import save_figure
+from .plots.sweeps import figure_boundaries, figure_plane
+
+
+def boundaries(datasets, label=None):
+    """Fig. 11: the overturnings of sweep datasets classified, then drawn by kind."""
+    return figure_boundaries(datasets, [classify.classify_dataset(ds) for ds in datasets],
+                             label=label)
+
+
+def histories(datasets, figure):
+    """Figs 12-16: the overturning of each panel's kind found with its history, then drawn."""
+    return figure_history(classify.figure_overturnings(datasets, figure), figure)
+
 
 FIGURES = {
     "map": figure_map,  # outcome map: amplitude vs frequency, one panel per other axis value
@@ -31,16 +47,19 @@ FIGURES = {
     "fig08": partial(figure_plane, label="Fig. 8"),
     "fig09": partial(figure_plane, label="Fig. 9"),
     "fig10": partial(figure_plane, label="Fig. 10"),
-    "fig11": partial(figure_boundaries, label="Fig. 11"),  # boundaries a, b, c by rocking kind
-    # histories before overturning, by kind of rocking (sweep.classify)
-    **{name: partial(figure_history, figure=name)
+    "fig11": partial(boundaries, label="Fig. 11"),  # boundaries a, b, c by rocking kind
+    # histories before overturning, by kind of rocking (sweep.paper.classify)
+    **{name: partial(histories, figure=name)
        for name in ("fig12", "fig13", "fig14", "fig15", "fig16")},
 }
-WITHOUT_DATASET = {"fig17"}  # drawn from sweep.criteria alone
+WITHOUT_DATASET = {"fig17"}  # drawn from sweep.paper.criteria alone
 SEVERAL = {f"fig{k:02d}" for k in range(8, 17)}  # drawn from a list of sweep datasets
 
 
 def main(argv=None):
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
     parser = argparse.ArgumentParser(prog="python -m sweep.plot",
                                      description="Draw a figure from a study's netCDF dataset.")
     parser.add_argument("result", nargs="*", help="dataset written by python -m sweep.run "
@@ -81,13 +100,9 @@ def main(argv=None):
 
 
 def _save(fig, output):
-    """Write the figure atomically: a temporary file renamed onto ``output``."""
-    out = Path(output)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    partial = out.with_name(f".{out.name}.partial")
-    fig.savefig(partial, dpi=150, format=out.suffix.lstrip(".") or "png")
-    os.replace(partial, out)
-    print(f"wrote {out}")
+    """Write the figure whole (``sweep.plots.style.save_figure``) and say so."""
+    save_figure(fig, Path(output))
+    print(f"wrote {output}")
     return 0
 
 

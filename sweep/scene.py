@@ -3,9 +3,10 @@
 import argparse
 import json
 import sys
+from pathlib import Path
 
-from .cli import reported_problems
-from .schema import load_scene, resolve_scene
+from .io.problems import reported
+from .runner.simulate import simulate, summary_line, to_json_dict
 
 
 def main(argv=None):
@@ -16,31 +17,27 @@ def main(argv=None):
     parser.add_argument("--animate", metavar="GIF", help="the body on the moving floor")
     parser.add_argument("--history", metavar="NC", help="write the time history (netCDF)")
     args = parser.parse_args(argv)
-    with reported_problems(args.scene):
-        resolved = resolve_scene(load_scene(args.scene))
-    from kernels import run_scene
-    from .one_scene import to_json_dict
-    want_history = bool(args.plot or args.animate or args.history)
-    result = run_scene(resolved, history=want_history)
-    if want_history:
-        from .history import history_dataset, write_netcdf
-        ds = history_dataset(result.history, resolved)
-        ds.attrs["source"] = args.scene
-        if args.history:
-            write_netcdf(ds, args.history)
-        title = f"{args.scene}: {result.status}"
+    with reported(args.scene):
+        result = simulate(args.scene, history=bool(args.plot or args.animate or args.history))
+    if args.history:
+        from .runner.store import write_netcdf
+        write_netcdf(result.history, args.history)
+    if args.plot or args.animate:
+        import matplotlib
+
+        matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
+        from .plots.scene import animate_scene, draw_scene
+        from .plots.style import save_figure
         if args.plot:
-            from .plot_scene import draw_scene
-            draw_scene(ds, args.plot, title)
+            save_figure(draw_scene(result.history, f"{args.scene}: {result.status}"),
+                        Path(args.plot), dpi=110)
         if args.animate:
-            from .plot_scene import animate_scene
-            animate_scene(ds, args.animate, args.scene)
+            animate_scene(result.history, args.animate, args.scene)
     if args.json:
         json.dump(to_json_dict(result), sys.stdout, indent=1)
         print()
     else:
-        print(f"{result.status}: {result.message}; {len(result.impact_times)} impacts, "
-              f"max |theta| {result.max_abs_theta:.4g} rad, cpu {result.cpu_s * 1e3:.2f} ms")
+        print(summary_line(result))
     return 0
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 _HERE = Path(__file__).resolve().parent
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != _HERE]
 
-from sweep import mpi  # noqa: E402
+from sweep.runner import mpi  # noqa: E402
 from sweep.run import main  # noqa: E402
 
 

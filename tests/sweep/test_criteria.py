@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from sweep import criteria
+from sweep.paper import criteria
 
 # PHYSICS.md A11: B, H [m] -> a_o [m/s^2], v_H [m/s], v_o [m/s], d_o [mm], T_c [s]
 A11 = [

@@ -5,6 +5,7 @@ import math
 import pytest
 
 from sweep import estimate
+from sweep.io.problems import FileProblems
 from study_helpers import cli
 
 G = 9.80665
@@ -84,13 +85,13 @@ def test_every_problem_at_once():
         {"name": "a", "B": "30 kg", "H": "-2 cm", "overturned": "maybe"},
         [1, 2],
         {"B": 0.1, "H": "1 west", "mu": -1, "i_g": "0 cm"}]}
-    with pytest.raises(estimate.FileProblems) as err:
+    with pytest.raises(FileProblems) as err:
         estimate.load_bodies(bad)
     paths = [p.path for p in err.value.problems]
     assert paths == ["sight", "bodies[0].B", "bodies[0].H", "bodies[0].overturned",
                      "bodies[1]", "bodies[2].H", "bodies[2].i_g", "bodies[2].overturned",
                      "bodies[2].mu"]
-    with pytest.raises(estimate.FileProblems) as err:
+    with pytest.raises(FileProblems) as err:
         estimate.load_bodies({"bodies": []})
     assert [p.path for p in err.value.problems] == ["bodies"]
 

@@ -10,8 +10,11 @@ import matplotlib
 import numpy as np
 import pytest
 
-from sweep import criteria, plot, plot_limits, plot_records, records
-from sweep.run import run_study
+from sweep import plot, run_study
+from sweep.io import records
+from sweep.paper import criteria
+from sweep.plots import limits as plot_limits
+from sweep.plots import records as plot_records
 
 G = 9.80665
 SCENE = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 0.8, "e_x": -0.8, "e_y": 0.2},

@@ -10,8 +10,10 @@ import math
 import numpy as np
 import pytest
 
-from sweep import classify, plot, plot_histories, plot_sweeps
-from sweep.run import run_study
+from sweep import plot, run_study
+from sweep.paper import classify, plane
+from sweep.plots import histories as plot_histories
+from sweep.plots import sweeps as plot_sweeps
 
 G = 9.80665
 ALPHA = math.atan(1 / 3)          # slenderness of a block with b/h = 1/3
@@ -131,7 +133,7 @@ BODY = {"B": 0.1, "H": 0.3, "i_g": None}
 ])
 def test_plane_point_matches_closed_forms(hold, amplitude, f, a, v):
     ground = {"kind": "sweep", "hold": hold, "amplitude": amplitude}
-    assert plot_sweeps.plane_point(ground, BODY, f) == pytest.approx((v, a), rel=2e-6)
+    assert plane.plane_point(ground, BODY, f) == pytest.approx((v, a), rel=2e-6)
 
 
 def test_dataset_coordinates_at_overturning_match_closed_forms(sweeps):
@@ -156,7 +158,7 @@ def test_overturning_after_the_sweep_is_left_out(sweeps):
     t = ds["t_overturn"].values
     t[1] = 20.0 + 1e-9  # the sweep lasts 20 s from t = 0
     assert classify.overturned_cells(ds).tolist() == [0]
-    assert plot_sweeps.sweep_cells(ds).late.tolist() == [False, True]
+    assert plane.sweep_cells(ds).late.tolist() == [False, True]
 
 
 # --- figures ----------------------------------------------------------------------------------
@@ -184,15 +186,16 @@ def test_plane_figure_shows_every_overturning_and_point_p(sweeps):
 
 
 def test_lowest_points(sweeps):
-    cells = plot_sweeps.sweep_cells(sweeps["velocity"])
-    lowest_v, lowest_a = plot_sweeps.lowest_points(cells)
+    cells = plane.sweep_cells(sweeps["velocity"])
+    lowest_v, lowest_a = plane.lowest_points(cells)
     ds = sweeps["velocity"]
     assert lowest_v[0] == pytest.approx(float(ds.v_norm_at_overturn.min()))
     assert lowest_a[1] == pytest.approx(float(ds.a_norm_at_overturn.min()))
 
 
 def test_boundaries_classify_every_overturning(sweeps):
-    fig = plot_sweeps.figure_boundaries(list(sweeps.values()), label="Fig. 11")
+    rockings = [classify.classify_dataset(ds) for ds in sweeps.values()]
+    fig = plot_sweeps.figure_boundaries(list(sweeps.values()), rockings, label="Fig. 11")
     labels = [text.get_text() for text in fig.legends[0].get_texts()]
     counts = [int(label.split("(n = ")[1].rstrip(")")) for label in labels if "(n = " in label]
     assert len(counts) == len(classify.KINDS)  # one legend entry per kind of rocking
@@ -202,8 +205,8 @@ def test_boundaries_classify_every_overturning(sweeps):
 
 
 def test_history_figure_picks_the_in_phase_overturning_nearest_p(sweeps):
-    panel = plot_histories.FIGURE_PANELS["fig15"][1][0]
-    found, _ = plot_histories.find_overturning([sweeps["velocity"]], panel)
+    panel = classify.FIGURE_PANELS["fig15"][1][0]
+    found, _ = classify.find_overturning([sweeps["velocity"]], panel)
     ds = sweeps["velocity"]
     distance = np.hypot(np.log(ds.v_norm_at_overturn.values / 0.4),
                         np.log(ds.a_norm_at_overturn.values))
@@ -216,10 +219,11 @@ def test_history_figure_picks_the_in_phase_overturning_nearest_p(sweeps):
 
 @pytest.mark.parametrize("name", ["fig12", "fig13", "fig14", "fig15", "fig16"])
 def test_history_figures_render(sweeps, name):
-    fig = plot_histories.figure_history(list(sweeps.values()), name)
+    found = classify.figure_overturnings(list(sweeps.values()), name)
+    fig = plot_histories.figure_history(found, name)
     texts = " ".join(t.get_text() for ax in fig.axes for t in ax.texts)
     drawn = [ax for ax in fig.axes if ax.get_lines()]
-    for panel in plot_histories.FIGURE_PANELS[name][1]:  # drawn, or said to be missing
+    for panel in classify.FIGURE_PANELS[name][1]:  # drawn, or said to be missing
         missing = f"no overturning from {panel.kind.replace('_', ' ')} rocking" in texts
         assert missing or drawn
     assert fig._suptitle.get_text().startswith(f"Fig. {int(name[3:])}")

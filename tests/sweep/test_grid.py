@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 from study_helpers import make_study
 
-from sweep import grid
-from sweep.schema import load_scene, resolve_scene
-from sweep.study import load_study
+from sweep.io.scene_schema import load_scene, resolve_scene
+from sweep.io.study_schema import load_study
+from sweep.runner import grid
 
 G = 9.80665
 

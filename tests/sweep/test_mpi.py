@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write_study
 
-from sweep import store
+from sweep.runner import store
 
 pytestmark = pytest.mark.mpi
 

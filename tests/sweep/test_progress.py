@@ -1,7 +1,7 @@
 """Progress on rank 0: log lines when not on a terminal or under CI, a bar otherwise, quiet."""
 import io
 
-from sweep.progress import Progress, format_seconds
+from sweep.runner.progress import Progress, format_seconds
 
 
 class _Terminal(io.StringIO):

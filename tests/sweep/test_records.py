@@ -4,8 +4,8 @@ import importlib.resources
 import numpy as np
 import pytest
 
-from sweep import records
-from sweep.records import RecordError, load_record, read_at2, read_record_file, read_two_column
+from sweep.io import records
+from sweep.io.records import RecordError, load_record, read_at2, read_record_file, read_two_column
 
 G = 9.80665
 

@@ -15,11 +15,13 @@ import xarray as xr
 from study_helpers import PY, cli, cli_env, without_run_attrs, write_study
 
 import sweep
-import sweep.cells
-from sweep import cf, grid, refine, store, units
+import sweep.runner.cells
+from sweep import cf
+from sweep.io import units
+from sweep.io.study_schema import load_study
+from sweep.io.problems import FileProblems
 from sweep.run import main
-from sweep.study import load_study
-from sweep.yamlio import FileProblems
+from sweep.runner import grid, refine, store
 
 BLOCK = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 0.8, "e_x": 0.0, "e_y": 0.0}}
 
@@ -244,7 +246,7 @@ def test_cli_bad_refine_exit_2_and_dry_run_counts(tmp_path):
 def test_interrupted_run_resumes_to_the_same_dataset(tmp_path, monkeypatch, capsys):
     study = write_study(tmp_path / "theta.yaml", THETA)
     monkeypatch.chdir(tmp_path)
-    calls, original = [], sweep.cells.run_chunk
+    calls, original = [], sweep.runner.cells.run_chunk
 
     def dies_in_round_2(study, cells):  # 25 coarse cells, 3 midpoints in round 1
         calls.append(len(cells))
@@ -252,10 +254,10 @@ def test_interrupted_run_resumes_to_the_same_dataset(tmp_path, monkeypatch, caps
             raise KeyboardInterrupt
         return original(study, cells)
 
-    monkeypatch.setattr(sweep.cells, "run_chunk", dies_in_round_2)
+    monkeypatch.setattr(sweep.runner.cells, "run_chunk", dies_in_round_2)
     with pytest.raises(KeyboardInterrupt):
         main([str(study), "--chunk-size", "1", "--quiet"])
-    monkeypatch.setattr(sweep.cells, "run_chunk", original)
+    monkeypatch.setattr(sweep.runner.cells, "run_chunk", original)
     parts = store.parts_dir(tmp_path / "theta.nc")
     assert [len(store.PartStore(store.round_dir(parts, k)).parts()) for k in range(3)] == \
         [25, 3, 1]

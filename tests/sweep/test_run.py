@@ -10,7 +10,7 @@ from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write
 
 import sweep
 from kernels import codes
-from sweep import store
+from sweep.runner import store
 
 
 def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from kernels.api import DEFAULTS
-from sweep.schema import apply_overrides, load_scene, resolve_scene
-from sweep.yamlio import FileProblems
+from sweep.io.scene_schema import apply_overrides, load_scene, resolve_scene
+from sweep.io.problems import FileProblems
 
 G = 9.80665
 

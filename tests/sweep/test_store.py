@@ -7,9 +7,10 @@ import xarray as xr
 from study_helpers import make_study, without_run_attrs
 
 from kernels import codes
-from sweep import cf, grid, store
-from sweep.cells import run_chunk
-from sweep.study import load_study
+from sweep import cf
+from sweep.io.study_schema import load_study
+from sweep.runner import grid, store
+from sweep.runner.cells import run_chunk
 
 # DESIGN.md section 6: variable -> (dtype, units, extra dims)
 CONTRACT = {

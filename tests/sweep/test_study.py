@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 from study_helpers import cli, make_study
 
-from sweep.study import load_study
-from sweep.yamlio import FileProblems
+from sweep.io.study_schema import load_study
+from sweep.io.problems import FileProblems
 
 BAD = """\
 name: bad

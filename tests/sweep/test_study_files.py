@@ -9,8 +9,8 @@ import pytest
 import yaml
 
 from sweep.estimate import load_bodies
-from sweep.schema import load_scene
-from sweep.study import load_study
+from sweep.io.scene_schema import load_scene
+from sweep.io.study_schema import load_study
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
 FILES = sorted(STUDIES.glob("*.yaml"))

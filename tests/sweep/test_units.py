@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from sweep.units import (Quantity, acceleration_amplitude, fixed_factor, parse_quantity,
+from sweep.io.units import (Quantity, acceleration_amplitude, fixed_factor, parse_quantity,
                          units_of)
 
 BODY = {"B": 0.1, "H": 0.3, "i_g": None}

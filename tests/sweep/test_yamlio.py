@@ -2,8 +2,8 @@
 import pytest
 import yaml
 
-from sweep.yamlio import (MISSING, FileProblems, Problem, UniqueKeyLoader, parse_yaml,
-                          read_yaml)
+from sweep.io.problems import MISSING, FileProblems, Problem
+from sweep.io.yamlio import UniqueKeyLoader, parse_yaml, read_yaml
 
 TEXT = """\
 a: 1

@@ -20,7 +20,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from .study import Dim
+from ..io import units
+from ..io.study_schema import Dim
 
 BRACKETED, NEVER_OVERTURNED, OVERTURNED_AT_START, FAILED = 0, 1, 2, 3
 BRACKET_NAMES = ("bracketed", "never_overturned", "overturned_at_start", "simulation_failed")
@@ -28,9 +29,6 @@ OVERTURNED, STANDING = 1, 0  # values of the ``overturned`` variable (-1: failed
 POINT = "point"  # the one dimension of a point study
 # A bracket wider than the tolerance by less than this fraction is closed: midpoints round.
 SLACK = 1e-9
-# SI unit of a coordinate, written into a midpoint's scene (bare numbers may mean another unit)
-SI_UNITS = {"acceleration": "m/s^2", "velocity": "m/s", "length": "m", "angle": "rad",
-            "angular_velocity": "rad/s", "frequency": "Hz", "time": "s"}
 
 Brackets = namedtuple("Brackets", "lower upper flag simulations transitions coarse rounds")
 Brackets.__doc__ = """State of the bisection, one entry per line (lines in C order of the other
@@ -155,9 +153,9 @@ def _raw(axis, value):
     value = float(value)
     if axis.body_relative:
         return f"{value!r} {axis.unit}"
-    if axis.dimension in SI_UNITS:
-        return f"{value!r} {SI_UNITS[axis.dimension]}"
-    return value
+    # coordinates are SI: written with the SI unit, as a bare number may mean another unit
+    si = units.units_of(axis.dimension) if axis.dimension in units.DIMENSIONS else ()
+    return f"{value!r} {si[0]}" if si else value
 
 
 def point_study(study, lines, values):

@@ -1,15 +1,13 @@
 """Pictures of one scene: successive positions of the body every 1/50 s (the paper's
 Figs 3-5) beside theta(t), the floor acceleration and the motion type; and an animation."""
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from kernels.codes import MODE_NAMES
 
-from kernels.codes import MODE_NAMES  # noqa: E402
+from .style import GAL
 
 MAX_OUTLINES = 150            # more outlines than this blur into a smear
-GAL = 0.01                    # 1 gal = 1 cm/s^2
 
 
 def outline(x, y, theta, b, h):
@@ -19,8 +17,8 @@ def outline(x, y, theta, b, h):
     return x + local[:, 0] * c - local[:, 1] * s, y + local[:, 0] * s + local[:, 1] * c
 
 
-def draw_scene(ds, path, title=""):
-    """Four panels from a history Dataset (``sweep.history``) written to ``path`` (PNG)."""
+def draw_scene(ds, title=""):
+    """Four panels from a history Dataset (``cf.history_dataset``): a matplotlib Figure."""
     b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
     alpha = np.arctan(b / h)
     t = ds["time"].values
@@ -60,8 +58,7 @@ def draw_scene(ds, path, title=""):
     for ax in (ax_theta, ax_floor):
         ax.tick_params(labelbottom=False)
     fig.suptitle(title)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def animate_scene(ds, path, title=""):

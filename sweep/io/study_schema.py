@@ -1,31 +1,37 @@
 """Study files (DESIGN.md section 5): a base scene, the axes to vary, zip groups, the output.
 
-``load_study`` reads a YAML file (or takes a dict), checks it and, unless told not to, every
-cell's scene; all problems are reported at once as :class:`~sweep.yamlio.FileProblems` with
-dotted paths (``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).
-A problem that a cell's scene shows because of an axis value is reported once, at that value
+``load_study`` reads a YAML file (or takes a dict) and checks it in two layers: the pydantic
+models ``StudyFile``, ``RangeSpec`` and ``RefineSpec`` check its sections and keys, then the
+axes, zip groups and refined axis are checked against each other and the base scene, and,
+unless told not to, every cell's scene.  All problems are reported at once, through the shared
+formatter, as :class:`~sweep.io.problems.FileProblems` with dotted paths
+(``grid.amplitude.num``, ``zip[0]``, ``scene.body.B``, ``refine.tolerance``).  A problem that a
+cell's scene shows because of an axis value is reported once, at that value
 (``grid.amplitude[3]``).  An optional ``refine: {axis, tolerance}`` asks for the overturning
-boundary along one axis by bisection (``sweep.refine``).  Coordinates are kept in SI units,
-except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as the
-normalized levels they are (CF units ``1``).
+boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are kept in SI
+units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as
+the normalized levels they are (CF units ``1``).
 """
-import difflib
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from typing import Annotated, Any, Optional
+
 import numpy as np
 import yaml
+from pydantic import AfterValidator, BeforeValidator, ValidationError, model_validator
 
 from kernels.api import scene_row
 
-from . import grid, units
-from .schema import load_scene, resolve_scene
-from .yamlio import MISSING, FileProblems, Problem, join_path, parse_yaml, read_text
+from ..runner import grid
+from . import units
+from .scene_schema import load_scene, resolve_scene
+from .problems import (MISSING, FieldError, FileProblems, Problem, closest, join_path,
+                       validation_problems)
+from .scene_schema import StrictModel
+from .yamlio import parse_yaml, read_text, top_level_problems
 
-KEYS = ("name", "title", "description", "scene", "grid", "zip", "refine", "output")
-REFINE_KEYS = ("axis", "tolerance")
-SPEC_KEYS = ("start", "stop", "num", "spacing", "unit", "values")
 SPACINGS = ("linear", "log")
 OUTPUT_DIR = "results"  # default output: results/<name>.nc, relative to the working directory
 
@@ -86,7 +92,7 @@ class Dim:
 
 @dataclass(frozen=True)
 class Refine:
-    """Bisection of the overturning boundary along one axis (``refine:``, see ``sweep.refine``).
+    """Bisection of the overturning boundary along one axis (``refine:``, ``runner.refine``).
 
     Attributes
     ----------
@@ -142,68 +148,136 @@ def _number(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def _check_unit(unit, path, problems):
-    """Parse a unit name: (Quantity of 1 unit) or None with a problem."""
+def _rule(check, message):
+    """A validator that keeps a value for which ``check(value)`` holds, else says ``message``."""
+    def validate(value):
+        if not check(value):
+            raise ValueError(message)
+        return value
+    return validate
+
+
+def _unit_name(unit):
+    """A unit name as written (stripped), checked against every unit of ``units``."""
     if not isinstance(unit, str) or not unit.strip():
-        problems.append(Problem(path, unit, "must be a unit name such as 'west', 'gal', 'Hz'"))
-        return None
-    try:
-        return units.parse_quantity(f"1 {unit}", units.DIMENSIONS)
-    except ValueError as err:
-        problems.append(Problem(path, unit, str(err)))
-        return None
+        raise ValueError("must be a unit name such as 'west', 'gal', 'Hz'")
+    units.parse_quantity(f"1 {unit}", units.DIMENSIONS)  # ValueError names the unit
+    return unit.strip()
+
+
+def _finite(value):
+    return _number(value) and math.isfinite(value)
+
+
+def _count(value):
+    return isinstance(value, int) and not isinstance(value, bool) and value >= 1
+
+
+def _non_empty(kind):
+    return lambda value: isinstance(value, kind) and bool(value)
+
+
+Bound = Annotated[Any, AfterValidator(_rule(_finite, "must be a finite number"))]
+
+
+class RangeSpec(StrictModel):
+    """An axis written as ``{start, stop, num, spacing, unit}`` or ``{values, unit}``."""
+
+    start: Optional[Bound] = None
+    stop: Optional[Bound] = None
+    num: Optional[Annotated[Any, AfterValidator(_rule(_count, "must be an integer >= 1"))]] = None
+    spacing: Optional[Annotated[Any, AfterValidator(_rule(
+        lambda v: v in SPACINGS, f"must be one of: {', '.join(SPACINGS)}"))]] = None
+    unit: Optional[Annotated[Any, AfterValidator(_unit_name)]] = None
+    values: Optional[Annotated[Any, AfterValidator(_rule(
+        _non_empty(list), "must be a non-empty list"))]] = None
+
+    @model_validator(mode="after")
+    def _values_or_range(self):
+        given = self.model_fields_set
+        if self.values is not None:
+            errors = [(key, getattr(self, key), "give either values or start/stop/num, not both")
+                      for key in ("start", "stop", "num", "spacing") if key in given]
+            if self.unit:
+                errors += [(("values", i), v, f"must be a number (the unit is {self.unit!r})")
+                           for i, v in enumerate(self.values) if not _number(v)]
+        else:
+            errors = [(key, MISSING, "required (or give values: [...])")
+                      for key in ("start", "stop", "num") if key not in given]
+            if self.spacing == "log":
+                errors += [(key, getattr(self, key), "must be > 0 for log spacing")
+                           for key in ("start", "stop")
+                           if key in given and not getattr(self, key) > 0]
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+    def raw_values(self):
+        """The values of the axis as written, before units: a list."""
+        if self.values is not None:
+            return list(self.values)
+        make = np.geomspace if self.spacing == "log" else np.linspace
+        return [float(x) for x in make(float(self.start), float(self.stop), self.num)]
+
+
+class RefineSpec(StrictModel):
+    """``refine: {axis, tolerance}``; what the axis and tolerance mean is checked against the
+    grid (:func:`_refine`)."""
+
+    axis: Any
+    tolerance: Any
+
+
+def _mapping_of(what):
+    """A validator for a section that must be a non-empty mapping."""
+    return BeforeValidator(_rule(_non_empty(dict), f"required: {what}"))
+
+
+def _refine_mapping(value):
+    if not isinstance(value, dict):
+        raise ValueError("must be a mapping {axis: <an axis of grid>, tolerance: <bracket "
+                         "width>}")
+    return value
+
+
+def _file_path(value):
+    if not isinstance(value, (str, Path)) or not str(value).strip():
+        raise ValueError("must be a file path such as results/x.nc")
+    return value
+
+
+NonEmptyText = Annotated[Any, AfterValidator(_rule(
+    lambda v: isinstance(v, str) and bool(v.strip()), "must be a non-empty string"))]
+Text = Annotated[Any, AfterValidator(_rule(lambda v: isinstance(v, str), "must be a string"))]
+
+
+class StudyFile(StrictModel):
+    """The sections of a study file (DESIGN.md section 5); axes, zip groups and the refined axis
+    are checked against each other and the scene by :func:`load_study`."""
+
+    name: Optional[NonEmptyText] = None
+    title: Optional[Text] = None
+    description: Optional[Text] = None
+    scene: Annotated[dict, _mapping_of("a scene mapping (body, contact, excitation, ...)")]
+    grid: Annotated[dict, _mapping_of("a mapping of axis names to values")]
+    zip: Optional[Any] = None
+    refine: Optional[Annotated[RefineSpec, BeforeValidator(_refine_mapping)]] = None
+    output: Optional[Annotated[Any, AfterValidator(_file_path)]] = None
+
+
+_FIELD_NAMES = sorted(set(StudyFile.model_fields) | set(RangeSpec.model_fields)
+                      | set(RefineSpec.model_fields))
 
 
 def _spec_values(spec, path, problems):
     """Raw values and unit of a mapping ``{start, stop, num, spacing, unit}`` or ``{values}``."""
-    before = len(problems)
-    for key in spec:
-        if key not in SPEC_KEYS:
-            close = difflib.get_close_matches(str(key), SPEC_KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(join_path(path, key), spec[key], f"unknown key{hint}"))
-    unit = spec.get("unit")
-    if unit is not None:
-        unit = _check_unit(unit, join_path(path, "unit"), problems) and unit.strip()
-    if "values" in spec:
-        for key in ("start", "stop", "num", "spacing"):
-            if key in spec:
-                problems.append(Problem(join_path(path, key), spec[key],
-                                        "give either values or start/stop/num, not both"))
-        values = spec["values"]
-        if not isinstance(values, list) or not values:
-            problems.append(Problem(join_path(path, "values"), values,
-                                    "must be a non-empty list"))
-            return None, unit
-        if unit:
-            for i, v in enumerate(values):
-                if not _number(v):
-                    problems.append(Problem(f"{path}.values[{i}]", v,
-                                            f"must be a number (the unit is {unit!r})"))
-        return (None if len(problems) > before else list(values)), unit
-    for key in ("start", "stop", "num"):
-        if key not in spec:
-            problems.append(Problem(join_path(path, key), MISSING,
-                                    "required (or give values: [...])"))
-    start, stop, num = spec.get("start"), spec.get("stop"), spec.get("num")
-    spacing = spec.get("spacing", "linear")
-    for key, value in (("start", start), ("stop", stop)):
-        if key in spec and not (_number(value) and math.isfinite(value)):
-            problems.append(Problem(join_path(path, key), value, "must be a finite number"))
-    if "num" in spec and not (isinstance(num, int) and not isinstance(num, bool) and num >= 1):
-        problems.append(Problem(join_path(path, "num"), num, "must be an integer >= 1"))
-    if spacing not in SPACINGS:
-        problems.append(Problem(join_path(path, "spacing"), spacing,
-                                f"must be one of: {', '.join(SPACINGS)}"))
-    elif spacing == "log":
-        for key, value in (("start", start), ("stop", stop)):
-            if _number(value) and not value > 0:
-                problems.append(Problem(join_path(path, key), value,
-                                        "must be > 0 for log spacing"))
-    if len(problems) > before:
-        return None, unit
-    make = np.geomspace if spacing == "log" else np.linspace
-    return [float(x) for x in make(float(start), float(stop), num)], unit
+    try:
+        checked = RangeSpec.model_validate(spec)
+    except ValidationError as err:
+        problems += [p._replace(path=join_path(path, p.path)) if p.path else p._replace(path=path)
+                     for p in validation_problems(err, _FIELD_NAMES)]
+        return None, None
+    return checked.raw_values(), checked.unit
 
 
 def _long_name(name, dimension, relative_unit):
@@ -306,8 +380,8 @@ def _axis_name_ok(name, path, problems):
         return True
     if isinstance(name, str) and "." in name and name.split(".")[0] in grid.SCENE_SECTIONS:
         return True
-    close = difflib.get_close_matches(str(name), list(grid.AXES), n=1)
-    hint = f"did you mean '{close[0]}'? " if close else ""
+    close = closest(name, grid.AXES)
+    hint = f"did you mean '{close}'? " if close else ""
     problems.append(Problem(path, name, f"unknown axis; {hint}axes are "
                                         f"{', '.join(grid.AXES)} or a dotted scene path "
                                         "such as excitation.horizontal.f_stop"))
@@ -425,26 +499,24 @@ def _refined_axis(name, axes, groups, names, problems):
     return None
 
 
-def _refine(raw, axes, groups, names, problems):
-    """Check ``refine: {axis, tolerance}``; a :class:`Refine` or None (problems appended)."""
-    if not isinstance(raw, dict):
-        problems.append(Problem("refine", raw, "must be a mapping {axis: <an axis of grid>, "
-                                               "tolerance: <bracket width>}"))
+def _refine_spec(raw):
+    """The axis and tolerance of ``refine`` as a :class:`RefineSpec`, or None when it is absent
+    or lacks them (``StudyFile`` reports why; an unknown key beside them does not stop their
+    check)."""
+    if not isinstance(raw, dict) or not all(key in raw for key in RefineSpec.model_fields):
         return None
+    return RefineSpec.model_validate({key: raw[key] for key in RefineSpec.model_fields})
+
+
+def _refine(raw, axes, groups, names, problems):
+    """The refined axis and tolerance of a well-formed ``refine`` (a :class:`RefineSpec`)
+    checked against the grid: a :class:`Refine` or None (problems appended)."""
     before = len(problems)
-    for key in raw:
-        if key not in REFINE_KEYS:
-            close = difflib.get_close_matches(str(key), REFINE_KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(join_path("refine", key), raw[key], f"unknown key{hint}"))
-    for key in REFINE_KEYS:
-        if key not in raw:
-            problems.append(Problem(join_path("refine", key), MISSING, "required"))
-    axis = _refined_axis(raw["axis"], axes, groups, names, problems) if "axis" in raw else None
-    tolerance = raw.get("tolerance")
-    if axis is not None and "tolerance" in raw:
+    axis = _refined_axis(raw.axis, axes, groups, names, problems)
+    tolerance = raw.tolerance
+    if axis is not None:
         tolerance = _tolerance(tolerance, axis, "refine.tolerance", problems)
-    elif "tolerance" in raw and not (_number(tolerance) or isinstance(tolerance, str)):
+    elif not (_number(tolerance) or isinstance(tolerance, str)):
         problems.append(Problem("refine.tolerance", tolerance,
                                 "must be a positive number or a quantity"))
     if len(problems) > before or axis is None:
@@ -560,41 +632,26 @@ def load_study(source, *, text=None, output=None, check_cells=True):
         text = read_text(source) if text is None else text
         raw, problems = parse_yaml(text)
         base_dir = Path(source).parent
-    if raw is None and not problems:
-        problems.append(Problem("(file)", MISSING, "the study is empty"))
-    elif raw is not None and not isinstance(raw, dict):
-        problems.append(Problem("(file)", raw, "a study must be a mapping of scene, grid, ..."))
-    if problems or raw is None or not isinstance(raw, dict):
+    problems += top_level_problems(raw, problems, "study", "scene, grid")
+    if problems:
         raise FileProblems(problems, src)
 
-    for key in raw:
-        if key not in KEYS:
-            close = difflib.get_close_matches(str(key), KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            problems.append(Problem(str(key), raw[key], f"unknown key{hint}"))
+    try:
+        StudyFile.model_validate(raw)
+    except ValidationError as err:  # an output given by the caller replaces the file's
+        problems += [p for p in validation_problems(err, _FIELD_NAMES)
+                     if not (output is not None and p.path == "output")]
+    # what is well formed is checked further, so that every problem shows at once
     name = raw.get("name", Path(src).stem if src else "study")
-    if not isinstance(name, str) or not name.strip():
-        problems.append(Problem("name", name, "must be a non-empty string"))
-        name = "study"
-    for key in ("title", "description"):
-        if key in raw and not isinstance(raw[key], str):
-            problems.append(Problem(key, raw[key], "must be a string"))
-    scene = raw.get("scene")
-    if not isinstance(scene, dict) or not scene:
-        problems.append(Problem("scene", MISSING if scene is None else scene,
-                                "required: a scene mapping (body, contact, excitation, ...)"))
-        scene = {}
+    name = name if isinstance(name, str) and name.strip() else "study"
+    scene = raw.get("scene") if isinstance(raw.get("scene"), dict) else {}
     out = output if output is not None else raw.get("output", f"{OUTPUT_DIR}/{name}.nc")
     if not isinstance(out, (str, Path)) or not str(out).strip():
-        problems.append(Problem("output", out, "must be a file path such as results/x.nc"))
         out = f"{OUTPUT_DIR}/{name}.nc"
 
     axes = {}
     spec = raw.get("grid")
-    if not isinstance(spec, dict) or not spec:
-        problems.append(Problem("grid", MISSING if spec is None else spec,
-                                "required: a mapping of axis names to values"))
-    else:
+    if isinstance(spec, dict) and spec:
         for axis_name, axis_spec in spec.items():
             path = join_path("grid", axis_name)
             if _axis_name_ok(axis_name, path, problems):
@@ -608,9 +665,9 @@ def load_study(source, *, text=None, output=None, check_cells=True):
             _conflicts(list(spec), problems)
     groups = _zip(raw.get("zip"), axes, list(spec) if isinstance(spec, dict) else [],
                   problems)
-    refine = None
-    if "refine" in raw:
-        refine = _refine(raw["refine"], axes, groups,
+    refine, refine_spec = None, _refine_spec(raw.get("refine"))
+    if refine_spec is not None:
+        refine = _refine(refine_spec, axes, groups,
                          list(spec) if isinstance(spec, dict) else [], problems)
     study = Study(name=name.strip(), title=str(raw.get("title", name)).strip(), scene=scene,
                   dims=_dims(axes, groups), output=Path(out), text=text, source=src,

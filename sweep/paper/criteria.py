@@ -11,6 +11,7 @@ import numpy as np
 
 G = 9.80665  # standard gravity [m/s^2], the value kernels.ground uses
 V_FACTOR = 0.4  # Ishiyama's empirical lower limit of the normalized velocity (point P)
+POINT_P = (V_FACTOR, 1.0)  # (v/v_H, a/((B/H) g)) of the paper's point P
 
 BodyConstants = namedtuple("BodyConstants", "b h r alpha i2 p eta")
 BodyConstants.__doc__ = """Derived constants of a rectangular body (PHYSICS.md 1.1, 2.1).

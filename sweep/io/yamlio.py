@@ -1,66 +1,14 @@
 """Reading scene and study files: ``yaml.safe_load`` semantics, duplicate keys refused.
 
 A file can never run code (only the safe constructors), and a key given twice is reported with
-its dotted path instead of silently keeping the last value.  :class:`FileProblems` carries every
-problem found in a file so that a user sees them all at once.
+its dotted path instead of silently keeping the last value; every problem is a
+:class:`~sweep.io.problems.Problem`, so that a user sees them all at once.
 """
-from collections import namedtuple
 from pathlib import Path
 
 import yaml
 
-Problem = namedtuple("Problem", "path value message")
-Problem.__doc__ = """One problem in a file: dotted ``path``, the ``value`` given, ``message``."""
-
-
-class _Missing:
-    """The ``value`` of a :class:`Problem` about a key that was not given."""
-
-    def __repr__(self):
-        return "MISSING"
-
-
-MISSING = _Missing()
-
-_MAX_SHOWN = 80  # characters of a value quoted in a message
-
-
-def _show(value):
-    text = repr(value) if isinstance(value, str) else str(value)
-    return text if len(text) <= _MAX_SHOWN else text[:_MAX_SHOWN - 3] + "..."
-
-
-class FileProblems(Exception):
-    """Every problem found in a file, formatted one per line as ``path: message (got: value)``.
-
-    Parameters
-    ----------
-    problems : list of Problem or of (path, value, message) tuples
-    source : str, optional
-        The file the problems were found in (kept for the caller's message, not in ``str``).
-    """
-
-    def __init__(self, problems, source=None):
-        self.problems = [Problem(*p) for p in problems]
-        self.source = None if source is None else str(source)
-        super().__init__(str(self))
-
-    def __str__(self):
-        return "\n".join(f"{p.path}: {p.message}" if p.value is MISSING
-                         else f"{p.path}: {p.message} (got: {_show(p.value)})"
-                         for p in self.problems)
-
-    def with_prefix(self, prefix):
-        """The same problems with ``prefix.`` put before each path (a scene inside a study)."""
-        return FileProblems([Problem(f"{prefix}.{p.path}" if p.path else prefix, p.value,
-                                     p.message) for p in self.problems], self.source)
-
-
-def join_path(path, key):
-    """Dotted path of ``key`` below ``path``; list indices as ``[i]``."""
-    if isinstance(key, int):
-        return f"{path}[{key}]"
-    return f"{path}.{key}" if path else str(key)
+from .problems import MISSING, FileProblems, Problem, join_path
 
 
 def duplicate_keys(node):
@@ -148,3 +96,16 @@ def read_yaml(path):
     if problems:
         raise FileProblems(problems, path)
     return data
+
+
+def top_level_problems(data, problems, what, sections):
+    """The problem of a file whose content is empty or not a mapping (none if it is one).
+
+    ``data, problems`` come from :func:`parse_yaml`; ``what`` names the file ('scene'),
+    ``sections`` its first sections ('body, contact'), for the message.
+    """
+    if data is None and not problems:
+        return [Problem("(file)", MISSING, f"the {what} is empty")]
+    if data is not None and not isinstance(data, dict):
+        return [Problem("(file)", data, f"a {what} must be a mapping of {sections}, ...")]
+    return []

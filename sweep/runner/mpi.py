@@ -19,6 +19,7 @@ import numpy as np
 from kernels import codes
 
 POLL = 0.02  # s between tests of a pending message or request
+FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
 TAG_PLAN, TAG_PROGRESS = 11, 12
 
 # Variables by which launchers announce the number of ranks (Hydra/MPICH, Intel MPI, Open MPI,
@@ -80,6 +81,12 @@ def launched(environ=None):
     """True when a launcher's variables are set (the process is a rank of an MPI job)."""
     environ = os.environ if environ is None else environ
     return any(var in environ for var in SIZE_VARS + RANK_VARS)
+
+
+def first_process(environ=None):
+    """True unless a launcher's variables name a rank other than 0 (one message per job)."""
+    environ = os.environ if environ is None else environ
+    return all(environ.get(v, "0") == "0" for v in RANK_VARS)
 
 
 def _threads_off():
@@ -162,6 +169,7 @@ def abort_on_exception(comm):
         sys.stderr.write(f"sweep.run: rank {comm.Get_rank()} of {comm.Get_size()} failed, "
                          f"aborting the job:\n{traceback.format_exc()}")
         sys.stderr.flush()
+        time.sleep(FORWARD)  # the launcher forwards the traceback before Abort kills the job
         comm.Abort(1)
 
 

@@ -16,19 +16,15 @@ and ``record`` gives the records of Fig. 21.
 import itertools
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import yaml
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import yaml  # noqa: E402
-from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
-
-from . import criteria, records, units  # noqa: E402
-from .plot_limits import plain_log_axis  # noqa: E402
-from .plot_map import COLOURS, _edges  # noqa: E402
+from ..io import records, units
+from ..paper import criteria
+from .style import OUTCOME_COLOURS, cell_edges, log_axes, outcome_colours
 
 # Table 5 of the paper: record -> peak acceleration [m/s^2], velocity [m/s], displacement [m]
 TABLE5 = {
@@ -185,7 +181,7 @@ def draw_criteria(ax, pga, pgv, source, H_range_cm, HB_range):
 def _outcome_legend(outcome):
     """Patches of the outcomes; 'failed' only when some cell of ``outcome`` failed."""
     failed = bool(np.any(np.asarray(outcome) == -1))
-    return [Patch(color=COLOURS[code], label=label) for code, label in REGIONS.items()
+    return [Patch(color=OUTCOME_COLOURS[code], label=label) for code, label in REGIONS.items()
             if code >= 0 or failed]
 
 
@@ -195,17 +191,12 @@ def draw_bodies(ax, da):
     if da.ndim != 2:
         raise ValueError(f"expected a 2-D slice over {names}; got {da.dims}")
     # cell edges in log space; cells are parallelograms on log axes, drawn exactly
-    edges = np.meshgrid(*(_edges(da[d].values, log=True) for d in names), indexing="ij")
+    edges = np.meshgrid(*(cell_edges(da[d].values, log=True) for d in names), indexing="ij")
     H_edges, HB_edges = _height_and_slenderness(**dict(zip(names, edges)))
-    codes = np.array(sorted(COLOURS))
-    cmap = ListedColormap([COLOURS[int(c)] for c in codes])
-    norm = BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
+    cmap, norm = outcome_colours()
     ax.pcolormesh(100 * H_edges, HB_edges, da.transpose(*names).values, cmap=cmap, norm=norm,
                   edgecolors="face", linewidth=0.0)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
+    log_axes(ax)
     ax.set_xlabel("height of the body H [cm]")
     ax.set_ylabel("height / breadth H/B")
 
@@ -298,10 +289,10 @@ def figure_summary(ds):
         pga, pgv, source = _peaks_of(ds, scene, name)
         x, y, outcome = normalized_cells(ds, name, pga, pgv)
         marker = next(markers)
-        for code in sorted(COLOURS):
+        for code in sorted(OUTCOME_COLOURS):
             pick = outcome == code
             if np.any(pick):
-                ax.scatter(x[pick], y[pick], s=9, marker=marker, color=COLOURS[code],
+                ax.scatter(x[pick], y[pick], s=9, marker=marker, color=OUTCOME_COLOURS[code],
                            edgecolors="0.3", linewidths=0.2)
         region = region_of(x, y)
         for r in "ABC":
@@ -310,10 +301,7 @@ def figure_summary(ds):
         ax.scatter([], [], marker=marker, color="0.6", label=f"{name} ({source})")
     ax.axvline(1.0, **CRITERIA_STYLE["acceleration"])
     ax.axhline(1.0, **CRITERIA_STYLE["velocity"])
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
+    log_axes(ax)
     ax.set_xlabel("PGA / a_o   (a_o = (B/H) g, Eq. 14)")
     ax.set_ylabel("PGV / v_o   (v_o = 0.4 v_H, Eq. 16)")
     for letter, (xt, yt) in {"A": (0.15, 0.5), "B": (0.62, 0.06), "C": (0.62, 0.93)}.items():
@@ -338,7 +326,7 @@ def _draw_region_bars(ax, rows):
     y = np.arange(len(rows))[::-1]
     left = np.zeros(len(rows))
     for k, code in enumerate((0, 1, 2, -1)):
-        ax.barh(y, shares[:, k], left=left, color=COLOURS[code], edgecolor="white")
+        ax.barh(y, shares[:, k], left=left, color=OUTCOME_COLOURS[code], edgecolor="white")
         left += shares[:, k]
     for yi, total in zip(y, totals):
         ax.text(1.01, yi, f"{int(total)} bodies", va="center", fontsize=8)

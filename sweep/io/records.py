@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import criteria
+from ..paper import criteria
 from .units import fixed_factor
 
 BUNDLED = ("elcentro1940_ns", "elcentro1940_ew", "elcentro1940_ud", "taft1952_ew_s69e")
@@ -142,7 +142,7 @@ def read_two_column(path, units="m/s^2"):
     path : str or Path
     units : str
         Unit of the acceleration column: ``m/s^2`` (default), ``g``, ``gal`` or any fixed
-        acceleration unit of :mod:`sweep.units`.
+        acceleration unit of :mod:`sweep.io.units`.
 
     Returns
     -------

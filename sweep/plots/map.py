@@ -7,17 +7,13 @@ West's units gets the line amplitude = 1, West's criterion for the start of rock
 """
 import itertools
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Patch
+from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
-from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter  # noqa: E402
+from .style import OUTCOME_COLOURS, cell_edges, outcome_colours
 
-# outcome code -> colour: failed, no rocking, rocked, overturned
-COLOURS = {-1: "#9e9e9e", 0: "#deebf7", 1: "#fdae6b", 2: "#cb181d"}
 MAX_PANELS = 6  # more combinations of the other axes than this: the first ones are drawn
 
 
@@ -43,17 +39,6 @@ def _log_spaced(values):
     return np.allclose(ratios, ratios[0], rtol=1e-6) and not np.allclose(ratios, 1.0)
 
 
-def _edges(values, log):
-    """Cell edges around centres (geometric midpoints on a log axis)."""
-    v = np.asarray(values, dtype=float)
-    if v.size == 1:
-        return np.array([v[0] * 0.9, v[0] * 1.1]) if log else np.array([v[0] - 0.5, v[0] + 0.5])
-    w = np.log(v) if log else v
-    mid = 0.5 * (w[1:] + w[:-1])
-    e = np.concatenate([[2 * w[0] - mid[0]], mid, [2 * w[-1] - mid[-1]]])
-    return np.exp(e) if log else e
-
-
 def _axes_of(ds, x, y):
     dims = [d for d in ds["outcome"].dims]
     if x is None and y is None and "frequency" in dims and "amplitude" in dims:
@@ -75,10 +60,8 @@ def draw_outcome_map(ax, da, x, y, legend=True):
     da = da.transpose(y, x)
     xs, ys = da[x].values, da[y].values
     logx, logy = _log_spaced(xs), _log_spaced(ys)
-    codes = sorted(COLOURS)
-    cmap = ListedColormap([COLOURS[c] for c in codes])
-    norm = BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
-    ax.pcolormesh(_edges(xs, logx), _edges(ys, logy), da.values, cmap=cmap, norm=norm,
+    cmap, norm = outcome_colours()
+    ax.pcolormesh(cell_edges(xs, logx), cell_edges(ys, logy), da.values, cmap=cmap, norm=norm,
                   edgecolors="white", linewidth=0.3)
     for log, axis, scale in ((logx, ax.xaxis, ax.set_xscale), (logy, ax.yaxis, ax.set_yscale)):
         if log:
@@ -94,9 +77,9 @@ def draw_outcome_map(ax, da, x, y, legend=True):
                     textcoords="offset points", fontsize=8)
     if legend:
         meanings = da.attrs.get("flag_meanings", "failed no_rocking rocked overturned").split()
-        values = list(np.atleast_1d(da.attrs.get("flag_values", codes)))
+        values = list(np.atleast_1d(da.attrs.get("flag_values", sorted(OUTCOME_COLOURS))))
         present = set(np.unique(da.values).tolist())
-        handles = [Patch(color=COLOURS[int(v)], label=m.replace("_", " "))
+        handles = [Patch(color=OUTCOME_COLOURS[int(v)], label=m.replace("_", " "))
                    for v, m in zip(values, meanings) if int(v) in present or int(v) >= 0]
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   fontsize=8, frameon=False)

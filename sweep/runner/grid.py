@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 
-from .schema import apply_overrides
-from .units import parse_quantity
+from ..io.scene_schema import HOLD_DIMENSIONS, apply_overrides
+from ..io.units import parse_quantity
 
 # The contact friction coefficients that the ``mu`` axis sets together.
 MU_PATHS = ("contact.mu_s", "contact.mu_k", "contact.mu_edge_s", "contact.mu_edge_k")
@@ -62,8 +62,6 @@ FIELD_DIMENSIONS = {
     "law": "name", "hold": "name", "shape": "name",
 }
 SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver")
-HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
-                   "displacement": "length"}
 
 DEFAULT_SEED = 0
 MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seconds at worst
@@ -201,7 +199,7 @@ def cell_overrides(study, index):
 
 
 def cell_scene(study, index):
-    """The raw scene dict of cell ``index`` (to be checked by ``schema.load_scene``)."""
+    """The raw scene dict of cell ``index`` (to be checked by ``io.scene_schema.load_scene``)."""
     return apply_overrides(study.scene, cell_overrides(study, index))
 
 

@@ -2,9 +2,9 @@
 
 ``run_chunk`` knows nothing of ranks or files (the mpi4py demos' ``mandelbrot_line``): it
 builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
-(``schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the whole chunk
-in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell arrays of
-``cf.VARIABLES``.
+(``io.scene_schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the
+whole chunk in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell
+arrays of ``cf.VARIABLES``.
 """
 import hashlib
 import os
@@ -16,8 +16,10 @@ import numpy as np
 import kernels
 from kernels import api, codes
 
-from . import cf, criteria, grid
-from .schema import load_scene, resolve_scene
+from .. import cf
+from ..io.scene_schema import load_scene, resolve_scene
+from ..paper import criteria
+from . import grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},

@@ -12,19 +12,18 @@ sees half a file.
 """
 import hashlib
 import json
-import os
 import shutil
 import zipfile
 from pathlib import Path
 
 import numpy as np
 
-from . import __version__, cf
+from .. import __version__, cf
+from ..io.files import TMP_MARK, replacing, write_atomic
 from .cells import kernel_digest
 
 MANIFEST = "manifest.json"
 PART_GLOB = "part-*.npz"
-TMP_MARK = ".tmp"
 
 
 class StoreError(Exception):
@@ -53,21 +52,6 @@ def fingerprint(study):
         content["refine"] = [study.refine.axis, study.refine.tolerance]
     text = json.dumps(content, sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _write_atomic(path, write):
-    """Call ``write(file)`` on a temporary file next to ``path``, fsync, rename onto it."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}{TMP_MARK}")
-    try:
-        with open(tmp, "wb") as f:
-            write(f)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 class PartStore:
@@ -112,7 +96,7 @@ class PartStore:
         for tmp in self.directory.glob(f".*{TMP_MARK}"):
             tmp.unlink(missing_ok=True)
         if not manifest.exists():
-            _write_atomic(manifest, lambda f: f.write(json.dumps(want, indent=1).encode()))
+            write_atomic(manifest, lambda f: f.write(json.dumps(want, indent=1).encode()))
 
     def parts(self):
         """Paths of the finished part files, sorted."""
@@ -136,7 +120,7 @@ class PartStore:
     def write_part(self, arrays):
         """Write one chunk's arrays (``cells.run_chunk``) as a part file, atomically."""
         name = f"part-{int(np.min(arrays['cell'])):09d}.npz"
-        _write_atomic(self.directory / name, lambda f: np.savez(f, **arrays))
+        write_atomic(self.directory / name, lambda f: np.savez(f, **arrays))
         return self.directory / name
 
     @staticmethod
@@ -190,16 +174,8 @@ def check_output(path, force):
 
 
 def write_netcdf(ds, path):
-    """Write a study Dataset to ``path`` atomically (temporary file + rename), CF encoding."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}{TMP_MARK}")
-    try:
+    """Write a Dataset of the package (a study's, a scene's history) to ``path`` atomically:
+    a temporary file in the same folder, flushed and renamed; encoding ``cf.encoding``."""
+    with replacing(path) as tmp:
         ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=cf.encoding(ds))
-        with open(tmp, "rb+") as f:
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    return path
+    return Path(path)

@@ -10,7 +10,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from . import criteria
+from ..paper import criteria
 
 DIMENSIONS = ("acceleration", "velocity", "length", "angle", "angular_velocity", "frequency",
               "time", "dimensionless")

@@ -1,18 +1,15 @@
 """Fig. 17 of Ishiyama (1982): lower limits to overturn a homogeneous rectangular body.
 
-Closed forms only (``sweep.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16), d_o of
-Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11) against the
-height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the slender-body
-rules of Eqs. (17), (19), (21) dashed.
+Closed forms only (``sweep.paper.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16),
+d_o of Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11)
+against the height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the
+slender-body rules of Eqs. (17), (19), (21) dashed.
 """
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
-
-from . import criteria  # noqa: E402
+from ..paper import criteria
+from .style import log_axes
 
 BREADTHS_CM = (5, 10, 20, 50, 100)  # one curve per breadth B [cm]
 H_MAX_CM = 1000.0  # heights drawn from H = B (a cube's face) to this [cm]
@@ -40,13 +37,6 @@ def limit_curves(B_cm, H_max_cm=H_MAX_CM, num=SAMPLES):
     return H_cm, exact, approx
 
 
-def plain_log_axis(axis):
-    """Log-scale ticks at 1, 2, 5 x 10^k written as plain numbers (0.2, 50, 100)."""
-    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
-    axis.set_minor_formatter(NullFormatter())
-
-
 PANELS = (  # key, y label, equation of the exact curve, of the dashed rule
     ("a", "lower limit of peak acceleration a_o [gal]", "(14)", None),
     ("v", "lower limit of peak velocity v_o [cm/s]", "(16)", "(17): 10 B/√H"),
@@ -66,10 +56,7 @@ def figure_limits():
             if rule:
                 ax.plot(H_cm, approx[key], color=colour, lw=1.0, ls="--")
     for ax, (key, label, eq, rule) in zip(axes.flat, PANELS):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        plain_log_axis(ax.xaxis)
-        plain_log_axis(ax.yaxis)
+        log_axes(ax)
         ax.set_xlabel("height of the body H [cm]")
         ax.set_ylabel(label)
         text = f"solid: Eq. {eq}" + (f"\ndashed: Eq. {rule}" if rule else "")

@@ -1,81 +1,28 @@
 """Figs 12-16 of Ishiyama (1982): the rocking before an overturning, from our own sweeps.
 
-A panel asks for a kind of rocking (``sweep.classify``) and the sweeps it may come from.  Among
-the overturnings of the given datasets it takes the one of that kind nearest to point P
-(v = 0.4, a = 1) in the normalized plane (log distance), simulates it again with its history
-and draws θ/α and the floor acceleration against time: over the whole sweep, and over its last
-cycles with the classifier's window shaded.  θ > 0 is rotation about the left corner, which a
+A panel asks for a kind of rocking and the sweeps it may come from
+(``sweep.paper.classify.FIGURE_PANELS``); ``sweep.paper.classify.figure_overturnings`` finds,
+among the overturnings of the sweep datasets, the one of that kind nearest to point P
+(v = 0.4, a = 1) with its history.  This module draws what it found: θ/α and the floor
+acceleration against time, over the whole sweep and over its last cycles with the
+classifier's window shaded.  θ > 0 is rotation about the left corner, which a
 floor acceleration to the right (a_x > 0) drives.
 """
-from collections import namedtuple
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.ticker import MaxNLocator
 
-import matplotlib
+from ..paper import criteria
+from ..paper.classify import FIGURE_PANELS
+from ..paper.plane import value_text
+from .style import GAL
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.ticker import MaxNLocator  # noqa: E402
-
-from . import classify, criteria, grid  # noqa: E402
-from .plot_scene import GAL  # noqa: E402
-from .plot_sweeps import POINT_P, _datasets, value_text  # noqa: E402
-
-Panel = namedtuple("Panel", "kind holds steady title")
-Panel.__doc__ = """A history to draw: the rocking ``kind``, the sweeps (``holds``) it may come
-from, whether it must come from steady rocking (a finite period ratio, not a few cycles), and
-the panel's title."""
-
-INVERSE = Panel("inverse_phase", ("acceleration",), True,
-                "overturning from inverse phase rocking (constant acceleration)")
-SUBHARMONIC = Panel("subharmonic", ("acceleration", "velocity", "displacement"), True,
-                    "overturning from subharmonic rocking")
-FIGURE_PANELS = {  # figure: (title, panels); a one-panel title is completed by the sweep
-    "fig12": ("Fig. 12: three kinds of rocking motion before overturning",
-              (INVERSE, SUBHARMONIC,
-               Panel("in_phase", ("velocity", "displacement"), False,
-                     "overturning from in phase rocking (constant velocity or displacement)"))),
-    "fig13": ("Fig. 13", (INVERSE,)),
-    "fig14": ("Fig. 14", (SUBHARMONIC,)),
-    "fig15": ("Fig. 15", (Panel("in_phase", ("velocity",), False, ""),)),
-    "fig16": ("Fig. 16", (Panel("in_phase", ("displacement",), False, ""),)),
-}
 LAST_CYCLES = 5  # floor cycles shown before the final excursion at least
-
-Found = namedtuple("Found", "ds study index result rocking")
-Found.__doc__ = """An overturning of the wanted kind: its dataset, study, cell id, the scene
-result with its history, and the classification."""
-
-
-def _distance_to_p(ds, cells):
-    """Log distance of the cells' overturning points from P in the normalized plane."""
-    v = ds["v_norm_at_overturn"].values.ravel()[cells]
-    a = ds["a_norm_at_overturn"].values.ravel()[cells]
-    return np.hypot(np.log(v / POINT_P[0]), np.log(a / POINT_P[1]))
-
-
-def find_overturning(datasets, panel):
-    """The overturning of ``panel.kind`` nearest to P among the sweeps holding one of
-    ``panel.holds`` (a ``Found``, or None), and the number of overturnings examined."""
-    candidates = []
-    for k, ds in enumerate(datasets):
-        study = classify.study_of(ds)
-        if study.excitation.get("hold", "acceleration") not in panel.holds:
-            continue
-        cells = classify.overturned_cells(ds)
-        candidates += [(d, k, int(i), study) for d, i in zip(_distance_to_p(ds, cells), cells)]
-    for examined, (_, k, index, study) in enumerate(sorted(candidates, key=lambda c: c[:3])):
-        result = classify.simulate_cell(study, index)
-        rocking = classify.classify_result(result)
-        steady = rocking is not None and not np.isnan(rocking.period_ratio)
-        if rocking is not None and rocking.kind == panel.kind and (steady or not panel.steady):
-            return Found(datasets[k], study, index, result, rocking), examined + 1
-    return None, len(candidates)
-
 
 def _cell_text(found):
     """'amplitude = 1.1 west; B x H = 5 x 15 cm' and the point of overturning."""
     parts = [value_text(name, value)
-             for name, value in grid.cell_values(found.study, found.index).items()]
+             for name, value in found.values.items()]
     h = found.result.history
     ds, i = found.ds, found.index
     a, v = (float(ds[f"{q}_norm_at_overturn"].values.ravel()[i]) for q in "av")
@@ -135,20 +82,19 @@ def _missing(ax, panel, examined):
     ax.set_axis_off()
 
 
-def figure_history(data, figure):
-    """Figs 12-16 from sweep datasets: the history before an overturning of each kind.
+def figure_history(found, figure):
+    """Figs 12-16: the history before an overturning of each kind.
 
     Parameters
     ----------
-    data : xarray.Dataset or sequence of them
-        Datasets of sweep studies (``sweep.run``).
+    found : list of (Found or None, int)
+        Per panel of the figure, the overturning found (with its history) and how many
+        overturnings were examined (``sweep.paper.classify.figure_overturnings``).
     figure : str
         A key of ``FIGURE_PANELS``: one panel (Figs 13-16: the whole sweep and its last
         cycles) or three (Fig. 12: the last cycles of each kind).
     """
     title, panels = FIGURE_PANELS[figure]
-    datasets = _datasets(data)
-    found = [find_overturning(datasets, panel) for panel in panels]
     if len(panels) == 1:
         (hit, examined), panel = found[0], panels[0]
         fig, axes = plt.subplots(2, 2, figsize=(13.0, 6.4), layout="constrained",

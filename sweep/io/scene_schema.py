@@ -1,14 +1,13 @@
 """Scene files (DESIGN.md section 4): validation into pydantic models, and resolution into SI.
 
 ``load_scene`` reads a YAML file (or takes a dict), checks it and reports every problem at
-once as :class:`~sweep.yamlio.FileProblems` with dotted paths; ``resolve_scene`` turns the
+once as :class:`~sweep.io.problems.FileProblems` with dotted paths; ``resolve_scene`` turns the
 checked scene into the resolved SI dict of ``kernels/api.py`` (units and body-relative units
 resolved with the scene's own body, records loaded, defaults of ``kernels.api.DEFAULTS`` filled
 in).  ``apply_overrides`` sets values by dotted path in a raw dict before validation, which is
 how a study gives each cell its values.
 """
 import copy
-import difflib
 import math
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
@@ -20,7 +19,9 @@ from kernels.api import DEFAULTS
 
 from . import records, units
 from .units import Quantity
-from .yamlio import MISSING, FileProblems, Problem, join_path, parse_yaml, read_text
+from .problems import (MISSING, FieldError, FileProblems, Problem, join_path,
+                       validation_problems)
+from .yamlio import parse_yaml, read_text, top_level_problems
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 KINDS = ("none", "sine", "sweep", "record", "pulse")
@@ -28,15 +29,7 @@ HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
 
 
-class _FieldError(ValueError):
-    """A cross-field check that blames one ``field`` of the model it runs in."""
-
-    def __init__(self, field, value, message):
-        super().__init__(message)
-        self.field, self.value = field, value
-
-
-def _quantity(*dimensions, gt=None, ge=None):
+def quantity(*dimensions, gt=None, ge=None):
     """Annotated type: a :class:`Quantity` of ``dimensions`` with an optional sign check."""
     def check(q):
         # every unit factor is positive, so the sign of the value is the sign in SI
@@ -49,16 +42,18 @@ def _quantity(*dimensions, gt=None, ge=None):
                      AfterValidator(check)]
 
 
-Length = _quantity("length", gt=0)
-Instant = _quantity("time", ge=0)
-Duration = _quantity("time", gt=0)
-Frequency = _quantity("frequency", gt=0)
-Angle = _quantity("angle")
-Acceleration = _quantity("acceleration")
+Length = quantity("length", gt=0)
+Instant = quantity("time", ge=0)
+Duration = quantity("time", gt=0)
+Frequency = quantity("frequency", gt=0)
+Angle = quantity("angle")
+Acceleration = quantity("acceleration")
 Coefficient = Annotated[float, Field(ge=0)]
 
 
-class _Model(BaseModel):
+class StrictModel(BaseModel):
+    """A section of an input file: unknown keys and non-finite numbers refused."""
+
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     @model_validator(mode="before")
@@ -68,7 +63,7 @@ class _Model(BaseModel):
         return {} if data is None else data
 
 
-class Body(_Model):
+class Body(StrictModel):
     """Full breadth ``B`` and height ``H``; ``i_g`` radius of gyration about G (default uniform)."""
 
     B: Length
@@ -76,7 +71,7 @@ class Body(_Model):
     i_g: Optional[Length] = None
 
 
-class Contact(_Model):
+class Contact(StrictModel):
     """Friction and restitution; ``mu`` sets all four friction coefficients, explicit ones win."""
 
     mu: Optional[Coefficient] = None
@@ -88,14 +83,14 @@ class Contact(_Model):
     e_y: Optional[Annotated[float, Field(ge=0, le=1)]] = None
 
 
-class _Ground(_Model):
+class _Ground(StrictModel):
     """A floor-motion component; the floor is still outside [start, start + duration)."""
 
     start: Optional[Instant] = None
     duration: Optional[Duration] = None
 
 
-class NoMotion(_Model):
+class NoMotion(StrictModel):
     kind: Literal["none"]
 
 
@@ -103,7 +98,7 @@ class SineMotion(_Ground):
     """Amplitude as acceleration, velocity or displacement (converted with omega = 2 pi f)."""
 
     kind: Literal["sine"]
-    amplitude: _quantity("acceleration", "velocity", "length")
+    amplitude: quantity("acceleration", "velocity", "length")
     frequency: Frequency
     phase: Optional[Angle] = None
 
@@ -144,7 +139,7 @@ class RecordMotion(_Ground):
     units: Optional[str] = None
     path: Optional[str] = None
     scale: Optional[float] = None
-    pga: Optional[_quantity("acceleration", gt=0)] = None
+    pga: Optional[quantity("acceleration", gt=0)] = None
 
     @field_validator("name")
     @classmethod
@@ -176,14 +171,14 @@ class RecordMotion(_Ground):
     @model_validator(mode="after")
     def _one_source_one_scale(self):
         if self.name is None and self.path is None:
-            raise _FieldError("name", MISSING,
+            raise FieldError("name", MISSING,
                               "required: name (a bundled record) or path (a file)")
         if self.name is not None and self.path is not None:
-            raise _FieldError("path", self.path, "give either name or path, not both")
+            raise FieldError("path", self.path, "give either name or path, not both")
         if self.units is not None and self.path is None:
-            raise _FieldError("units", self.units, "units apply to a path: file only")
+            raise FieldError("units", self.units, "units apply to a path: file only")
         if self.scale is not None and self.pga is not None:
-            raise _FieldError("pga", str(self.pga), "give either scale or pga, not both")
+            raise FieldError("pga", str(self.pga), "give either scale or pga, not both")
         return self
 
 
@@ -200,7 +195,7 @@ Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseM
                    Field(discriminator="kind")]
 
 
-class Excitation(_Model):
+class Excitation(StrictModel):
     horizontal: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
     vertical: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
 
@@ -211,17 +206,17 @@ class Excitation(_Model):
         return {"kind": "none"} if value is None or value == "none" else value
 
 
-class Initial(_Model):
+class Initial(StrictModel):
     """Initial state: tilt, angular velocity, velocities of G and lift of the base [SI]."""
 
     theta: Optional[Angle] = None
-    omega: Optional[_quantity("angular_velocity")] = None
-    x_dot: Optional[_quantity("velocity")] = None
-    y_dot: Optional[_quantity("velocity")] = None
-    lift: Optional[_quantity("length", ge=0)] = None
+    omega: Optional[quantity("angular_velocity")] = None
+    x_dot: Optional[quantity("velocity")] = None
+    y_dot: Optional[quantity("velocity")] = None
+    lift: Optional[quantity("length", ge=0)] = None
 
 
-class Solver(_Model):
+class Solver(StrictModel):
     """Integrator and guards (PHYSICS.md 3); ``t_end`` defaults from the excitation."""
 
     method: Optional[Literal["adaptive", "fixed"]] = None
@@ -232,12 +227,12 @@ class Solver(_Model):
     t_end: Optional[Duration] = None
     max_steps: Optional[Annotated[int, Field(gt=0)]] = None
     max_events: Optional[Annotated[int, Field(gt=0)]] = None
-    theta_overturn: Optional[_quantity("angle", gt=0)] = None
+    theta_overturn: Optional[quantity("angle", gt=0)] = None
     zeno_dt: Optional[Duration] = None
     dt_out: Optional[Duration] = None
 
 
-class Scene(_Model):
+class Scene(StrictModel):
     """A scene file (DESIGN.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
 
     body: Body
@@ -263,28 +258,6 @@ def _dotted(loc):
             continue
         path = join_path(path, key)
     return path
-
-
-def _problem(error):
-    """A :class:`Problem` from one pydantic error dict."""
-    path, value, kind = _dotted(error["loc"]), error.get("input", MISSING), error["type"]
-    message = error["msg"].removeprefix("Value error, ").replace("Input should be", "must be")
-    cause = (error.get("ctx") or {}).get("error")
-    if isinstance(cause, _FieldError):
-        return Problem(join_path(path, cause.field), cause.value, str(cause))
-    if kind == "missing":
-        return Problem(path, MISSING, "required")
-    if kind == "extra_forbidden":
-        key = str(error["loc"][-1])
-        close = difflib.get_close_matches(key, _FIELD_NAMES, n=1)
-        hint = f"; did you mean '{close[0]}'?" if close else ""
-        return Problem(path, value, f"unknown key{hint}")
-    if kind in ("union_tag_not_found", "union_tag_invalid"):
-        tag = value.get("kind", MISSING) if isinstance(value, dict) else value
-        return Problem(join_path(path, "kind"), tag,
-                       "required" if tag is MISSING else
-                       f"unknown kind; expected one of: {', '.join(KINDS)}")
-    return Problem(path, value, message)
 
 
 def load_scene(source, *, base_dir=None):
@@ -314,15 +287,13 @@ def load_scene(source, *, base_dir=None):
         name = source
         raw, problems = parse_yaml(read_text(source))
         base_dir = Path(source).parent if base_dir is None else base_dir
-    if raw is None and not problems:
-        problems.append(Problem("(file)", MISSING, "the scene is empty"))
-    elif raw is not None and not isinstance(raw, dict):
-        problems.append(Problem("(file)", raw, "a scene must be a mapping of body, contact, ..."))
-    elif raw is not None:
+    top = top_level_problems(raw, problems, "scene", "body, contact")
+    problems += top
+    if raw is not None and not top:
         try:
             scene = Scene.model_validate(raw, context={"base_dir": base_dir})
         except ValidationError as err:
-            problems += [_problem(e) for e in err.errors(include_url=False)]
+            problems += validation_problems(err, _FIELD_NAMES, _dotted, KINDS)
     if problems:
         raise FileProblems(problems, name)
     return scene

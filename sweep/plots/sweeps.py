@@ -6,22 +6,18 @@ Eq. 1), as the paper draws them, with West's line a = 1, the single-shock line v
 paper's point P (v = 0.4, a = 1).  On these log axes a sweep runs along a straight line:
 horizontal at constant acceleration, vertical at constant velocity, of slope 2 at constant
 displacement.  A figure takes the datasets of one or several sweep studies
-(``python -m sweep.plot A.nc V.nc D.nc --figure fig09 -o fig09.png``).  An overturning after
-the excitation stopped is not a result of the sweep: it is left out and counted.
+(``python -m sweep.plot A.nc V.nc D.nc --figure fig09 -o fig09.png``), read by
+``sweep.paper.plane``; Fig. 11 also takes the classification of their overturnings
+(``sweep.paper.classify.classify_dataset``).  An overturning after the excitation stopped is
+not a result of the sweep: it is left out and counted.
 """
-import itertools
-from collections import namedtuple
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.lines import Line2D
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-
-from . import classify, criteria, units  # noqa: E402
-from .plot_limits import plain_log_axis  # noqa: E402
-from .schema import HOLD_DIMENSIONS  # noqa: E402
+from ..paper.criteria import POINT_P
+from ..paper.plane import lowest_points, sweep_cells
+from .style import as_list, log_axes
 
 HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three symbols
     "acceleration": {"marker": "o", "color": "tab:red"},
@@ -31,7 +27,6 @@ HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three 
 CRITERIA_STYLE = {"west": {"color": "k", "ls": "--", "lw": 1.1},
                   "shock": {"color": "0.35", "ls": "-", "lw": 1.0}}
 V_LIMITS, A_LIMITS = (0.1, 5.0), (0.15, 6.0)  # normalized velocity and acceleration shown
-POINT_P = (criteria.V_FACTOR, 1.0)  # (v, a) of the paper's point P
 KIND_STYLE = {  # the paper's boundaries of Fig. 11 and the other kinds of the classifier
     "inverse_phase": {"marker": "o", "color": "tab:red", "ls": "-",
                       "label": "a: from inverse phase rocking"},
@@ -45,104 +40,6 @@ KIND_STYLE = {  # the paper's boundaries of Fig. 11 and the other kinds of the c
 # kinds drawn as boundary lines, and the sweeps they come from (Fig. 11)
 BOUNDARIES = {"inverse_phase": ("acceleration",), "subharmonic": tuple(HOLD_STYLE),
               "in_phase": ("velocity", "displacement")}
-
-SweepCells = namedtuple("SweepCells", "hold down start end point late failed series labels "
-                                      "body tilt")
-SweepCells.__doc__ = """The cells of one sweep study in the normalized plane.
-
-hold : 'acceleration', 'velocity' or 'displacement'; down : True when swept down in frequency;
-start, end : ndarray, shape (n, 2), (v, a) where each cell's sweep starts and where it ends
-(at the overturning, or at the end of the sweep; NaN for a failed cell); point : ndarray,
-shape (n, 2), (v, a) at overturning during the sweep, NaN otherwise; late : bool array,
-overturned after the excitation stopped; failed : bool array; series : int array, the
-combination of the study's other axes (not ``amplitude``) of each cell; labels : one text per
-series; body : text naming the body (or bodies); tilt : initial tilt / alpha of the cells."""
-
-
-# --- the cells of a dataset -------------------------------------------------------------------
-
-def plane_point(ground, body, f):
-    """(v, a): the sweep ``ground`` (resolved, SI) at frequency ``f`` in the normalized plane."""
-    held = units.Quantity(ground["amplitude"], "", HOLD_DIMENSIONS[ground["hold"]])
-    a, v = criteria.normalized_plane(units.acceleration_amplitude(held, f), f, body["B"],
-                                     body["H"], body["i_g"])
-    return float(v), float(a)
-
-
-def value_text(name, value):
-    """'amplitude = 1.1 west', 'vertical_amplitude = 0.3 g': an axis value as written."""
-    try:
-        value = units.parse_quantity(value, units.DIMENSIONS)
-    except ValueError:
-        pass  # a name
-    return f"{name} = {value}"
-
-
-def _series(study):
-    """Index of the combination of the study's dimensions other than ``amplitude`` of each
-    cell (in cell order), and one label per combination."""
-    others = [k for k, dim in enumerate(study.dims)
-              if all(axis.name != "amplitude" for axis in dim.axes)]
-    positions = np.indices(study.shape).reshape(len(study.dims), -1)[others]
-    sizes = [study.dims[k].size for k in others]
-    series = (np.ravel_multi_index(positions, sizes) if others
-              else np.zeros(positions.shape[1], dtype=int))
-    labels = [", ".join(value_text(axis.name, axis.values[i])
-                        for k, i in zip(others, combo) for axis in study.dims[k].axes)
-              for combo in itertools.product(*(range(n) for n in sizes))]
-    return series, labels
-
-
-def _body_text(bodies):
-    """'B x H = 5 x 15 cm (b/h = 1/3)' or 'several bodies'."""
-    if len(bodies) > 1:
-        return "several bodies"
-    B, H = next(iter(bodies))
-    return f"B × H = {100 * B:.3g} × {100 * H:.3g} cm (b/h = 1/{H / B:.3g})"
-
-
-def sweep_cells(ds):
-    """The cells of a sweep study's dataset in the normalized plane (a ``SweepCells``)."""
-    study = classify.study_of(ds)
-    n = int(ds["outcome"].size)
-    f_over = ds["f_at_overturn"].values.ravel()
-    v_over, a_over = (ds[f"{q}_norm_at_overturn"].values.ravel() for q in "va")
-    overturned = ds["overturned"].values.ravel() == 1
-    failed = ds["outcome"].values.ravel() == -1
-    t_overturn = ds["t_overturn"].values.ravel()
-    start, end = np.full((n, 2), np.nan), np.full((n, 2), np.nan)
-    late = np.zeros(n, dtype=bool)
-    bodies, tilts, hold, down = set(), set(), None, None
-    for i in range(n):
-        scene = classify.resolved_cell(study, i)
-        ground, body = scene["excitation"]["horizontal"], scene["body"]
-        if ground["kind"] != "sweep":
-            raise ValueError(f"the horizontal excitation of {study.name} is not a sweep")
-        hold, down = ground["hold"], ground["f_stop"] < ground["f_start"]
-        bodies.add((body["B"], body["H"]))
-        tilts.add(scene["initial"]["theta"] / criteria.body_constants(body["B"],
-                                                                      body["H"]).alpha)
-        late[i] = overturned[i] and t_overturn[i] > classify.excitation_end(scene)
-        start[i] = plane_point(ground, body, ground["f_start"])
-        if not failed[i]:
-            on_time = overturned[i] and not late[i]
-            end[i] = plane_point(ground, body, f_over[i] if on_time else ground["f_stop"])
-    during = overturned & ~late
-    point = np.where(during[:, None], np.column_stack([v_over, a_over]), np.nan)
-    series, labels = _series(study)
-    return SweepCells(hold, down, start, end, point, late, failed, series, labels,
-                      _body_text(bodies), float(max(tilts, key=abs)))
-
-
-def lowest_points(cells):
-    """(v, a) of the overturning with the lowest normalized velocity and of the one with the
-    lowest normalized acceleration (NaN without overturning)."""
-    ok = ~np.isnan(cells.point[:, 0])
-    if not np.any(ok):
-        return (np.nan, np.nan), (np.nan, np.nan)
-    pts = cells.point[ok]
-    return tuple(pts[np.argmin(pts[:, 0])]), tuple(pts[np.argmin(pts[:, 1])])
-
 
 # --- drawing ----------------------------------------------------------------------------------
 
@@ -161,12 +58,9 @@ def draw_criteria(ax):
 
 def plane_axes(ax):
     """Log axes of the normalized plane with plain tick labels."""
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    log_axes(ax)
     ax.set_xlim(*V_LIMITS)
     ax.set_ylim(*A_LIMITS)
-    plain_log_axis(ax.xaxis)
-    plain_log_axis(ax.yaxis)
     ax.set_xlabel("normalized velocity: velocity amplitude / v_H")
     ax.set_ylabel("normalized acceleration: acceleration amplitude / ((B/H) g)")
     ax.grid(True, which="major", color="0.9", lw=0.6)
@@ -221,11 +115,6 @@ def _title(label, cells_list, what):
     return f"{label + ': ' if label else ''}{what}, {body}{tilt}"
 
 
-def _datasets(data):
-    """A list of datasets from one Dataset or a sequence of them."""
-    return [data] if hasattr(data, "data_vars") else list(data)
-
-
 def figure_plane(data, label=None):
     """Figs 8-10: overturning points of sweep studies in the normalized plane.
 
@@ -236,7 +125,7 @@ def figure_plane(data, label=None):
     label : str, optional
         The paper's figure, for the title ('Fig. 9').
     """
-    datasets = _datasets(data)
+    datasets = as_list(data)
     cells_list = [sweep_cells(ds) for ds in datasets]
     fig, ax = plt.subplots(figsize=(8.4, 7.6), layout="constrained")
     plane_axes(ax)
@@ -253,23 +142,24 @@ def figure_plane(data, label=None):
     return fig
 
 
-def figure_boundaries(data, label=None):
+def figure_boundaries(data, rockings, label=None):
     """Fig. 11: boundaries of overturning drawn through our overturning points by kind.
 
-    Each overturned cell is simulated again and classified by the rocking before it
-    (``sweep.classify``): curve a through the inverse-phase overturnings of the
-    constant-acceleration sweeps, b through the subharmonic ones, c through the in-phase
-    overturnings of the constant velocity and displacement sweeps; one line per study, dotted
-    for a body released with an initial tilt (the paper's dotted curve).
+    ``rockings`` holds, per dataset, the classification of its overturned cells by the rocking
+    before them ({cell id: Rocking}, ``sweep.paper.classify.classify_dataset``): curve a
+    through the inverse-phase overturnings of the constant-acceleration sweeps, b through the
+    subharmonic ones, c through the in-phase overturnings of the constant velocity and
+    displacement sweeps; one line per study, dotted for a body released with an initial tilt
+    (the paper's dotted curve).
     """
     fig, ax = plt.subplots(figsize=(8.4, 7.6), layout="constrained")
     plane_axes(ax)
     counts = dict.fromkeys(KIND_STYLE, 0)
     cells_list = []
-    for ds in _datasets(data):
+    for ds, rocking in zip(as_list(data), rockings):
         cells = sweep_cells(ds)
         cells_list.append(cells)
-        kinds = {i: r.kind for i, r in classify.classify_dataset(ds).items()}
+        kinds = {i: r.kind for i, r in rocking.items()}
         for kind, style in KIND_STYLE.items():
             ids = np.array(sorted(i for i, k in kinds.items() if k == kind), dtype=int)
             counts[kind] += ids.size

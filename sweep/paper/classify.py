@@ -5,7 +5,9 @@ curve a), *subharmonic* rocking (curve b) and *in phase* rocking, repeated "only
 (constant velocity or displacement sweeps, line c).  A study's dataset does not keep
 histories, so a cell is simulated again with its history (``simulate_cell``; the run is
 deterministic and overturns at the same instant) and the rocking before the overturning is
-classified (``classify_history``).
+classified (``classify_history``).  ``find_overturning`` picks, for a panel of Figs 12-16, the
+overturning of a kind nearest to point P and returns it with its history, for
+``sweep.plots.histories`` to draw.
 
 Rule (θ > 0 is rotation about the left corner, which a floor acceleration a_x > 0 drives):
 
@@ -36,11 +38,11 @@ import numpy as np
 
 from kernels import run_scene
 
-from . import grid
-from .criteria import body_constants
-from .history import history_dataset
-from .schema import load_scene, resolve_scene
-from .study import load_study
+from .. import cf
+from ..io.scene_schema import load_scene, resolve_scene
+from ..io.study_schema import load_study
+from ..runner import grid
+from .criteria import POINT_P, body_constants
 
 KINDS = ("in_phase", "inverse_phase", "subharmonic", "irregular")
 EPSILON = 0.05      # |θ|/α above which the body counts as tilted to one side (step 1)
@@ -159,12 +161,12 @@ def study_of(ds):
 def simulate_cell(study, index, dt_out=DT_OUT):
     """Simulate cell ``index`` of a study again, with its history sampled every ``dt_out`` s.
 
-    Returns the kernel's ``SceneResult`` with ``history`` as a Dataset (``sweep.history``).
+    Returns the kernel's ``SceneResult`` with ``history`` as a Dataset (``cf.history_dataset``).
     """
     scene = resolved_cell(study, index)
     scene["solver"]["dt_out"] = dt_out  # output sampling only: the trajectory is the same
     result = run_scene(scene, history=True)
-    return result._replace(history=history_dataset(result.history, scene))
+    return result._replace(history=cf.history_dataset(result.history, scene))
 
 
 def classify_result(result):
@@ -178,7 +180,7 @@ def classify_result(result):
 
 
 def resolved_cell(study, index):
-    """The resolved SI scene of cell ``index`` of a study (``schema.resolve_scene``)."""
+    """The resolved SI scene of cell ``index`` of a study (``io.scene_schema.resolve_scene``)."""
     return resolve_scene(load_scene(grid.cell_scene(study, int(index)), base_dir=study.base_dir))
 
 
@@ -190,14 +192,46 @@ def excitation_end(scene):
     return ground["start"] + ground["duration"]
 
 
+def amplitude_dim(study):
+    """Position of the dimension that is the ``amplitude`` axis alone, or None."""
+    return next((k for k, dim in enumerate(study.dims)
+                 if len(dim.axes) == 1 and dim.axes[0].name == "amplitude"), None)
+
+
+def scene_groups(study):
+    """Cells that differ only in the amplitude of the horizontal motion, and their scene.
+
+    Every axis but a lone ``amplitude`` changes the body, the contact or the timing of the
+    motion, so one resolved scene per combination of those axes describes the cells of that
+    combination but for their amplitude (which the dataset's ``amplitude`` coordinate gives).
+
+    Returns
+    -------
+    group : ndarray of int, shape (n_cells,)
+        The group of each cell.
+    scenes : list of dict
+        The resolved scene of each group's first cell.
+    """
+    k = amplitude_dim(study)
+    if k is None:
+        group = np.arange(study.n_cells)
+    else:
+        others = [d for d in range(len(study.dims)) if d != k]
+        positions = np.indices(study.shape).reshape(len(study.dims), -1)[others]
+        group = (np.ravel_multi_index(positions, [study.dims[d].size for d in others])
+                 if others else np.zeros(study.n_cells, dtype=int))
+    first = np.unique(group, return_index=True)[1]
+    return group, [resolved_cell(study, i) for i in first]
+
+
 def overturned_cells(ds):
     """Cell ids (flat indices in the study's order) of the cells that overturned while the
     floor was shaking; an overturning after the excitation stopped is left out."""
-    study = study_of(ds)
+    group, scenes = scene_groups(study_of(ds))
+    end = np.array([excitation_end(scene) for scene in scenes])[group]
     t_overturn = ds["t_overturn"].values.ravel()
     cells = np.flatnonzero(ds["overturned"].values.ravel() == 1)
-    return np.array([i for i in cells
-                     if t_overturn[i] <= excitation_end(resolved_cell(study, i))], dtype=int)
+    return cells[t_overturn[cells] <= end[cells]].astype(int)
 
 
 def classify_dataset(ds, cells=None):
@@ -224,3 +258,62 @@ def classify_dataset(ds, cells=None):
         if rocking is not None:
             found[int(index)] = rocking
     return found
+
+
+# --- the histories of Figs 12-16 -----------------------------------------------------------
+
+Panel = namedtuple("Panel", "kind holds steady title")
+Panel.__doc__ = """A history to draw: the rocking ``kind``, the sweeps (``holds``) it may come
+from, whether it must come from steady rocking (a finite period ratio, not a few cycles), and
+the panel's title."""
+
+INVERSE = Panel("inverse_phase", ("acceleration",), True,
+                "overturning from inverse phase rocking (constant acceleration)")
+SUBHARMONIC = Panel("subharmonic", ("acceleration", "velocity", "displacement"), True,
+                    "overturning from subharmonic rocking")
+FIGURE_PANELS = {  # figure: (title, panels); a one-panel title is completed by the sweep
+    "fig12": ("Fig. 12: three kinds of rocking motion before overturning",
+              (INVERSE, SUBHARMONIC,
+               Panel("in_phase", ("velocity", "displacement"), False,
+                     "overturning from in phase rocking (constant velocity or displacement)"))),
+    "fig13": ("Fig. 13", (INVERSE,)),
+    "fig14": ("Fig. 14", (SUBHARMONIC,)),
+    "fig15": ("Fig. 15", (Panel("in_phase", ("velocity",), False, ""),)),
+    "fig16": ("Fig. 16", (Panel("in_phase", ("displacement",), False, ""),)),
+}
+Found = namedtuple("Found", "ds study index values result rocking")
+Found.__doc__ = """An overturning of the wanted kind: its dataset, study, cell id, the raw value
+of every axis in that cell, the scene result with its history, and the classification."""
+
+
+def _distance_to_p(ds, cells):
+    """Log distance of the cells' overturning points from P in the normalized plane."""
+    v = ds["v_norm_at_overturn"].values.ravel()[cells]
+    a = ds["a_norm_at_overturn"].values.ravel()[cells]
+    return np.hypot(np.log(v / POINT_P[0]), np.log(a / POINT_P[1]))
+
+
+def find_overturning(datasets, panel):
+    """The overturning of ``panel.kind`` nearest to P among the sweeps holding one of
+    ``panel.holds`` (a ``Found``, or None), and the number of overturnings examined."""
+    candidates = []
+    for k, ds in enumerate(datasets):
+        study = study_of(ds)
+        if study.excitation.get("hold", "acceleration") not in panel.holds:
+            continue
+        cells = overturned_cells(ds)
+        candidates += [(d, k, int(i), study) for d, i in zip(_distance_to_p(ds, cells), cells)]
+    for examined, (_, k, index, study) in enumerate(sorted(candidates, key=lambda c: c[:3])):
+        result = simulate_cell(study, index)
+        rocking = classify_result(result)
+        steady = rocking is not None and not np.isnan(rocking.period_ratio)
+        if rocking is not None and rocking.kind == panel.kind and (steady or not panel.steady):
+            return Found(datasets[k], study, index, grid.cell_values(study, index), result,
+                         rocking), examined + 1
+    return None, len(candidates)
+
+
+def figure_overturnings(datasets, figure):
+    """The overturning of each panel of ``figure`` (a key of ``FIGURE_PANELS``): a list of
+    ``(Found or None, overturnings examined)``, one per panel."""
+    return [find_overturning(datasets, panel) for panel in FIGURE_PANELS[figure][1]]

@@ -1,0 +1,2 @@
+"""Input and output: YAML files, units, the scene, study and bodies schemas, ground-motion
+records, the problem formatter every file check reports through, and atomic writes."""

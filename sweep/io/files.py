@@ -1,0 +1,41 @@
+"""Files written whole or not at all: a temporary name in the same folder, then ``os.replace``.
+
+``os.replace`` is atomic on one file system, so a reader (or a run that resumes after being
+killed) sees either the old file or the new one, never half of one.  Every file the package
+writes goes through :func:`replacing`: part files, manifests, datasets, histories, figures.
+"""
+import os
+from contextlib import contextmanager
+from pathlib import Path
+
+TMP_MARK = ".tmp"  # ending of temporary names (a killed run's leftovers are found by it)
+
+
+def temporary_name(path):
+    """The temporary name next to ``path`` that this process writes before renaming."""
+    path = Path(path)
+    return path.with_name(f".{path.name}.{os.getpid()}{TMP_MARK}")
+
+
+@contextmanager
+def replacing(path):
+    """Yield a temporary path next to ``path``; when the block ends, flush it to disk and rename
+    it onto ``path``.  On any exception the temporary file is removed and ``path`` untouched."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = temporary_name(path)
+    try:
+        yield tmp
+        with open(tmp, "rb+") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def write_atomic(path, write):
+    """Call ``write(file)`` on a binary file that becomes ``path`` atomically."""
+    with replacing(path) as tmp, open(tmp, "wb") as f:
+        write(f)
+    return Path(path)

@@ -1,0 +1,2 @@
+"""Running simulations: one scene, and studies as grids of cells dealt in chunks to MPI ranks,
+with part files, resume, merge, bisection of boundaries (refine) and progress."""

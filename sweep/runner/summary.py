@@ -1,0 +1,132 @@
+"""What a study run says: its size, the dry run's estimate, and the summaries at the end.
+
+Everything here prints (rank 0 only); nothing decides how the run goes.
+"""
+import sys
+import time
+
+import numpy as np
+
+from kernels import codes
+
+from .. import cf
+from . import grid, refine, store
+from .progress import format_seconds
+
+SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
+MAX_LISTED = 20  # failed cells listed in the summary
+
+
+def say(*text, file=sys.stdout):
+    """Print at once (ranks share the terminal; a buffered line would come late)."""
+    print(*text, file=file, flush=True)
+
+
+def shape_text(study):
+    """'amplitude 9 x frequency 5': the study's dimensions and sizes."""
+    return " x ".join(f"{dim.name} {dim.size}" for dim in study.dims)
+
+
+def _tolerance_text(study):
+    _, axis = refine.refined_axis(study)
+    return f"{study.refine.tolerance:g} {axis.unit if axis.body_relative else axis.units}"
+
+
+def refine_text(study):
+    """What a refine study will run, at most."""
+    _, axis = refine.refined_axis(study)
+    lines = study.n_cells // axis.coords.size
+    return (f"refine {axis.name} to {_tolerance_text(study)} on {lines} line"
+            f"{'s' if lines != 1 else ''}: {study.n_cells} coarse cells ({shape_text(study)}), "
+            f"then at most {refine.max_rounds(study)} rounds of one midpoint per line: at most "
+            f"{refine.max_simulations(study)} simulations (a grid of the same resolution: "
+            f"{refine.dense_simulations(study)} cells)")
+
+
+def dry_run(study, size, seed, done):
+    """Print the cell count and an estimate of the run time from a timed sample of cells."""
+    from .cells import run_chunk, warm_up  # the kernel, only when a dry run is asked for
+
+    n, left = study.n_cells, study.n_cells - len(done)
+    if study.refine:
+        left = refine.max_simulations(study)
+        say(f"study {study.name}: {refine_text(study)}")
+    else:
+        say(f"study {study.name}: {n} cells ({shape_text(study)})")
+    say(f"output: {study.output}" + (" (exists: --force to overwrite)"
+                                      if study.output.exists() else ""))
+    if len(done):
+        say(f"resume: {len(done)} cells done in {store.parts_dir(study.output)}")
+    t0 = time.perf_counter()
+    warm_up()
+    compile_s = time.perf_counter() - t0
+    sample = grid.shuffled(n, seed)[:min(n, SAMPLE_CELLS)]
+    t0 = time.perf_counter()
+    run_chunk(study, sample)
+    per_cell = (time.perf_counter() - t0) / len(sample)
+    estimate = per_cell * left
+    say(f"estimated run time: {format_seconds(per_cell)} per cell (timed on {len(sample)}), "
+         f"{format_seconds(estimate)} for {'at most ' if study.refine else ''}{left} cells "
+         "on 1 rank"
+         + (f", about {format_seconds(estimate / size)} on {size} ranks" if size > 1 else "")
+         + f"; plus start-up (kernel load {format_seconds(compile_s)})")
+
+
+def summary(study, arrays, wall, stats, quiet, size):
+    """Counts of outcomes, failed cells with their coordinates, balance of the ranks."""
+    outcome, status = arrays["outcome"], arrays["status"]
+    failed = np.flatnonzero(outcome == codes.FAILED)
+    if not quiet:
+        counts = ", ".join(f"{int(np.sum(outcome == code))} {name.replace('_', ' ')}"
+                           for code, name in zip(*cf.OUTCOME_FLAGS))
+        say(f"sweep.run: wrote {study.output}: {study.n_cells} cells in {wall:.1f} s on "
+             f"{size} rank{'s' if size > 1 else ''}; {counts}")
+        _say_busy(stats, size)
+    if failed.size:
+        say(f"sweep.run: {failed.size} cell{'s' if failed.size > 1 else ''} failed "
+             "(outcome = -1, see `status`):", file=sys.stderr)
+        for index in failed[:MAX_LISTED]:
+            where = ", ".join(f"{k}={v!r}" for k, v in grid.cell_coords(study, index).items())
+            say(f"  cell {index} ({where}): {codes.STATUS_NAMES[status[index]]}",
+                 file=sys.stderr)
+        _say_more(failed.size)
+
+
+def _say_busy(stats, size):
+    """The cells and busy seconds of every rank (several ranks only)."""
+    if size > 1:
+        busy = ", ".join(f"rank {r}: {stats[r][0]} cells {stats[r][1]:.1f} s"
+                         for r in sorted(stats))
+        say(f"sweep.run: busy time per rank: {busy}")
+
+
+def _say_more(n):
+    if n > MAX_LISTED:
+        say(f"  ... and {n - MAX_LISTED} more", file=sys.stderr)
+
+
+def refine_summary(study, brackets, wall, stats, quiet, size):
+    """Counts of the brackets, simulations against a dense grid, lines that failed."""
+    k, _ = refine.refined_axis(study)
+    first_cells = refine.coarse_cells(study)[:, 0]
+    if not quiet:
+        counts = ", ".join(f"{int(np.sum(brackets.flag == code))} {name.replace('_', ' ')}"
+                           for code, name in enumerate(refine.BRACKET_NAMES))
+        say(f"sweep.run: wrote {study.output}: {brackets.flag.size} lines in "
+             f"{brackets.rounds} rounds, {int(brackets.simulations.sum())} simulations (at "
+             f"most {refine.max_simulations(study)}; a grid of the same resolution: "
+             f"{refine.dense_simulations(study)}) in {wall:.1f} s on {size} "
+             f"rank{'s' if size > 1 else ''}; {counts}")
+        _say_busy(stats, size)
+    failed = np.flatnonzero(brackets.flag == refine.FAILED)
+    if failed.size:
+        say(f"sweep.run: a simulation failed on {failed.size} line"
+             f"{'s' if failed.size > 1 else ''}; bisection stopped there (bracket = "
+             "simulation_failed):", file=sys.stderr)
+        for line in failed[:MAX_LISTED]:
+            coords = grid.cell_coords(study, first_cells[line])
+            coords.pop(study.dims[k].name)
+            where = ", ".join(f"{key}={v!r}" for key, v in coords.items())
+            say(f"  line {line} ({where}): bracket [{brackets.lower[line]!r}, "
+                 f"{brackets.upper[line]!r}]", file=sys.stderr)
+        _say_more(failed.size)
