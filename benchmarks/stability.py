@@ -12,7 +12,7 @@ import numpy as np
 from kernels import codes
 from kernels.api import run_scene
 
-from . import hard_cases as hc
+from tests import hard_cases as hc
 from .markdown import ms, sci, table
 from .references import zeno_time
 

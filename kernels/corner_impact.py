@@ -17,16 +17,21 @@ from .motion import corner, corner_velocity, kinetic_energy
 from .tolerances import ENERGY_ROUNDOFF, V_ZERO
 
 
-@jit
-def corner_impulse(q, s, e_x, e_y, mu_s, mu_k, body):
-    """Impulse (P_t, P_n, flags) at corner s by the law of section 2.2 (steps 1-4), with
-    the corner's inverse mass matrix W (the Delassus matrix, per unit mass)."""
+@jit(inline="always")
+def delassus(q, s, body):
+    """The velocity (V_x, V_y) of corner s and its inverse mass matrix W (the Delassus
+    matrix, per unit mass): V_c+ = V_c- + W P for an impulse P at the corner.
+    Returns (V_x, V_y, W_tt, W_tn, W_nn)."""
     b, h, i2 = body
     rcx, rcy = corner(s, q[ITHETA], b, h)
     Vx, Vy = corner_velocity(q, s, b, h)
-    Wtt = 1.0 + rcy * rcy / i2
-    Wtn = -rcx * rcy / i2
-    Wnn = 1.0 + rcx * rcx / i2
+    return Vx, Vy, 1.0 + rcy * rcy / i2, -rcx * rcy / i2, 1.0 + rcx * rcx / i2
+
+
+@jit
+def corner_impulse(q, s, e_x, e_y, mu_s, mu_k, body):
+    """Impulse (P_t, P_n, flags) at corner s by the law of section 2.2 (steps 1-4)."""
+    Vx, Vy, Wtt, Wtn, Wnn = delassus(q, s, body)
     target_n = -(1.0 + e_y) * Vy
     det = Wtt * Wnn - Wtn * Wtn
     Pt = (1.0 + e_x) * (-Wnn * Vx - Wtn * target_n) / det

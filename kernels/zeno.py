@@ -9,8 +9,7 @@ would come within zeno_dt is closed to face contact.  The mode table (``transiti
 asks these questions; the answers are here.
 """
 from ._jit import jit
-from .codes import IOMEGA, ITHETA, IU, IV
-from .motion import corner, corner_velocity
+from .corner_impact import apply_impulse, delassus
 
 
 @jit(inline="always")
@@ -32,12 +31,7 @@ def stop_corner(q, s, body, tangential):
     """Apply at corner s the impulse P that stops its normal velocity (and, if tangential,
     its tangential one too): V_c+ = V_c- + W P with the corner's inverse mass matrix W (per
     unit mass).  The change of energy, P.V_c-/2, is never positive."""
-    b, h, i2 = body
-    rcx, rcy = corner(s, q[ITHETA], b, h)
-    Vx, Vy = corner_velocity(q, s, b, h)
-    wxx = 1.0 + rcy * rcy / i2
-    wxy = -rcx * rcy / i2
-    wyy = 1.0 + rcx * rcx / i2
+    Vx, Vy, wxx, wxy, wyy = delassus(q, s, body)
     if tangential:
         det = wxx * wyy - wxy * wxy
         Px = -(wyy * Vx - wxy * Vy) / det
@@ -45,6 +39,4 @@ def stop_corner(q, s, body, tangential):
     else:
         Px = 0.0
         Py = -Vy / wyy
-    q[IU] += Px
-    q[IV] += Py
-    q[IOMEGA] += (rcx * Py - rcy * Px) / i2
+    apply_impulse(q, s, Px, Py, body)

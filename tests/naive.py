@@ -271,3 +271,32 @@ def rigid_plastic_slide(a_x, mu, t_end, breaks=(), rtol=1e-12, atol=1e-14):
             sliding = False
     xs = np.array(xs)
     return np.array(ts), xs, float(np.max(np.abs(xs)))
+
+
+def floor_motion(ground):
+    """A callable a(t) [m/s^2] of a resolved ground component (kernels/api.py) for the scipy
+    program, and the instants [s] where it is not smooth (window edges, record samples)."""
+    kind = ground["kind"]
+    if kind == "none":
+        return (lambda t: 0.0), ()
+    if kind == "sine":
+        a = sine(ground["amplitude"], ground["frequency"], ground["phase"])
+        kinks = ()
+    elif kind == "sweep":
+        if ground["hold"] != "acceleration" or ground["law"] != "log":
+            raise ValueError("the scipy sweep holds the acceleration on a log law")
+        a = sweep(ground["amplitude"], ground["f_start"], ground["f_stop"],
+                                ground["duration"], ground["phase"])
+        kinks = ()
+    elif kind == "record":
+        samples = ground["samples"]
+        a = record(samples, ground["dt"], ground["scale"])
+        kinks = tuple(ground["dt"] * np.arange(len(samples)))
+    else:
+        raise ValueError(f"no scipy floor motion of kind {kind!r}")
+    start = ground["start"]
+    end = math.inf if ground["duration"] is None else start + ground["duration"]
+    if start == 0.0 and end == math.inf:
+        return a, kinks
+    return ((lambda t: a(t - start) if start <= t < end else 0.0),
+            tuple(start + k for k in kinks) + (start,) + ((end,) if end < math.inf else ()))

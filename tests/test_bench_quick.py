@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from benchmarks import hard_cases, scenes, throughput, work_precision
+import hard_cases
+from benchmarks import scenes, throughput, work_precision
 from kernels.api import run_scene
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,7 +1,7 @@
 """Stability on hard cases (PHYSICS.md section 3): impact accumulation near West's threshold,
 grazing contact and lift-off, stick-slip with friction near b/h, the Painleve region, bouncing
 with e_y near 1, and overturning statistics of chaotic rocking.  Scenes and checks come from
-``benchmarks.hard_cases`` (the report's stability section runs the same ones); every check is
+``tests/hard_cases.py`` (the report's stability section runs the same ones); every check is
 against something independent of the kernel: scipy re-integrating each flight, closed forms,
 energy conservation, binomial statistics.
 """
@@ -10,9 +10,8 @@ import math
 import numpy as np
 import pytest
 
-from benchmarks import hard_cases as hc
-from benchmarks.references import zeno_time
-from benchmarks.scipy_rocking import body_constants
+import hard_cases as hc
+from naive import body_constants, zeno_time
 from kernels import codes
 from kernels.api import run_scene
 

@@ -14,9 +14,8 @@ from scipy.stats import binomtest
 
 from kernels import api, codes
 from sweep.io.scene_schema import load_scene, resolve_scene
-
-from . import scipy_rocking
-from .scenes import floor_motion
+from tests import naive as scipy_rocking
+from tests.naive import floor_motion
 
 G = scipy_rocking.G
 B, H = 0.1, 0.3
