@@ -40,7 +40,6 @@ METHOD_NAMES = ("adaptive", "fixed")
 
 # --- ground-motion kinds --------------------------------------------------------------------
 G_NONE, G_SINE, G_SWEEP, G_RECORD, G_PULSE_RECT, G_PULSE_TRI = range(6)
-GROUND_KIND_NAMES = ("none", "sine", "sweep", "record", "pulse_rectangular", "pulse_triangular")
 LAW_LOG, LAW_LINEAR = 0, 1
 HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
 

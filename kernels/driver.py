@@ -34,7 +34,8 @@ from .motion import from_full, n_dof, rhs, to_full
 from .rest_skipping import rest_exit, rest_threshold
 from .state import Step, new_work, scene_of
 from .tableaus import tableau
-from .tolerances import BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, THRESHOLD_NUDGE
+from .tolerances import (BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, RETRY_SHRINK,
+                         THRESHOLD_NUDGE)
 from .transitions import (NOT_AN_IMPACT, initial_mode, leave_rest, on_event,
                           painleve_at_entry)
 
@@ -171,7 +172,7 @@ def run_scene(par, rec, res, log, hist):
         steps += 1
         if not _finite(z_new, n):
             if solver.adaptive and dt > MIN_RETRY_DT:
-                dt_next = 0.1 * dt
+                dt_next = RETRY_SHRINK * dt
                 continue
             status = NON_FINITE
             break

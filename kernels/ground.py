@@ -17,6 +17,7 @@ from .codes import (G_AMP, G_DUR, G_F0, G_FREQ, G_HOLD, G_KIND, G_LAW, G_NONE, G
 
 TWO_PI = 2.0 * math.pi
 G = 9.80665  # standard gravity [m/s^2]
+SCAN_FRACTION = 0.125   # of a period: an interval this long holds at most one extremum
 
 Ground = namedtuple("Ground", "kind amp freq phase start dur f0 law hold rec_off rec_n rec_dt")
 Ground.__doc__ = """One floor component (SI): kind (``codes.G_*``); amp: sine/pulse
@@ -189,6 +190,6 @@ def scan_step(t, floor):
     f = max(component_frequency(t, floor.x), component_frequency(t, floor.y))
     if f <= 0.0:
         return math.inf
-    f2 = max(component_frequency(t + 0.125 / f, floor.x),
-             component_frequency(t + 0.125 / f, floor.y))
-    return 0.125 / max(f, f2)
+    f2 = max(component_frequency(t + SCAN_FRACTION / f, floor.x),
+             component_frequency(t + SCAN_FRACTION / f, floor.y))
+    return SCAN_FRACTION / max(f, f2)

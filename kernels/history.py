@@ -1,6 +1,6 @@
 """The sampled history of a scene: one row (``codes.H_*``) every dt_out seconds."""
 from ._jit import jit
-from .codes import H_AX, H_AY, H_MODE, H_T, N_STATE
+from .codes import H_AX, H_AY, H_MODE, H_T, H_X, N_STATE
 from .ground import ground
 from .integrate import dense
 from .motion import to_full
@@ -12,7 +12,7 @@ def write_row(hist, i, t, q, mode, floor, rec):
     a_x, a_y = ground(t, floor, rec)
     hist[i, H_T] = t
     for j in range(N_STATE):
-        hist[i, 1 + j] = q[j]
+        hist[i, H_X + j] = q[j]
     hist[i, H_MODE] = mode
     hist[i, H_AX] = a_x
     hist[i, H_AY] = a_y

@@ -6,9 +6,10 @@ restitution), the ``Floor`` motion (``ground.Floor``), the ``Solver`` options an
 ``Initial`` values.  The record samples a floor component may point into are one array
 shared by a chunk of scenes, passed beside the scene as ``rec``.  Arrays stay out of the
 scene on purpose: numba counts references to every array a compiled function receives or
-takes out of a record, which in the step loop would cost as much as the physics.  ``Work`` holds every buffer a scene needs, allocated once; a ``Step`` is one taken
-step, which the dense output, the event search and the extremes read.  SI units, per unit
-mass; b and h are the half-breadth and half-height (PHYSICS.md 1.1).
+takes out of a record, which in the step loop would cost as much as the physics.
+``Work`` holds every buffer of a scene, allocated once; a ``Step`` is one taken step,
+which the dense output, the event search and the extremes read.  SI units, per unit mass;
+b and h are the half-breadth and half-height (PHYSICS.md 1.1).
 """
 from collections import namedtuple
 
@@ -37,9 +38,9 @@ Initial.__doc__ = "Initial rotation [rad], rates [rad/s, m/s] and lift of the lo
 Solver = namedtuple("Solver", "method adaptive rtol atol dt max_step t_end max_steps "
                               "max_events theta_over zeno_dt v_tol dt_out")
 Solver.__doc__ = """Integration options: the method (``codes.METHOD_NAMES``; its ``Tableau`` is
-``tableaus.tableau(method)``), whether its step size is controlled, tolerances, the fixed step dt, budgets, the overturning angle, the Zeno time
-and the corner speed v_tol = g zeno_dt / 2 that a bounce or slip closing within it has, the
-history interval dt_out."""
+``tableaus.tableau(method)``), whether its step size is controlled, tolerances, the fixed
+step dt, budgets, the overturning angle, the Zeno time and the corner speed
+v_tol = g zeno_dt / 2 that a bounce or slip closing within it has, the history interval."""
 
 Scene = namedtuple("Scene", "body contact floor solver initial")
 

@@ -19,7 +19,8 @@ POLISH_MAX = 0.01         # ... whose correction is taken only when smaller than
 # --- time and steps (``driver``, ``rest_skipping``) -----------------------------------------
 BREAK_GUARD = 1e-12       # the floor is read this long [s] before a break (its left-hand value)
 THRESHOLD_NUDGE = 1e-12   # relative step past a rest threshold met exactly
-MIN_RETRY_DT = 1e-12      # smallest step [s] retried (at a tenth) after a non-finite state
+MIN_RETRY_DT = 1e-12      # smallest step [s] retried after a non-finite state ...
+RETRY_SHRINK = 0.1        # ... with this fraction of its length
 MIN_DT = 1e-14            # a rejected step below this (relative to max(1, t)) ends the scene
 ERR_FLOOR = 1e-4          # the PI controller's memory of the last error norm: start and floor
 
