@@ -41,9 +41,9 @@ from .transitions import (NOT_AN_IMPACT, initial_mode, leave_rest, on_event,
 
 
 @jit
-def _enter(mode, s, sigma, t, scene, rec, work):
-    """Make mode current at time t from the full state ``work.q``; False if it has D <= 0."""
-    ctx, q, z = work.ctx, work.q, work.z
+def _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
+    """Make mode current at time t from the full state q: its compact state z, contact ctx,
+    slope K[0] and event values g_old; False if it has D <= 0 (Painleve)."""
     ctx[CTX_S] = s
     ctx[CTX_SIGMA] = sigma
     from_full(mode, q, ctx, scene.body, z)
@@ -51,8 +51,8 @@ def _enter(mode, s, sigma, t, scene, rec, work):
         return True
     if painleve_at_entry(mode, s, sigma, t, q, scene, rec):
         return False
-    rhs(mode, t, z, ctx, scene, rec, work.K[0])
-    event_values(mode, t, q, ctx, scene, rec, work.values.old)
+    rhs(mode, t, z, ctx, scene, rec, K[0])
+    event_values(mode, t, q, ctx, scene, rec, g_old)
     return True
 
 
@@ -133,7 +133,7 @@ def run_scene(par, rec, res, log, hist):
     clamps = 0
     dt_next = solver.dt if not solver.adaptive else min(solver.max_step, FIRST_STEP)
     mode, s, sigma = initial_mode(q, scene, rec)
-    if not _enter(mode, s, sigma, t, scene, rec, work):
+    if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
         status = PAINLEVE
     t_rest = 0.0 if mode == REST else math.nan
     observe(mode, q, body, extremes)
@@ -156,7 +156,7 @@ def run_scene(par, rec, res, log, hist):
                 t += THRESHOLD_NUDGE * max(1.0, t)
                 continue
             events += 1
-            if not _enter(mode, s, sigma, t, scene, rec, work):
+            if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
                 status = PAINLEVE
             continue
 
@@ -245,7 +245,7 @@ def run_scene(par, rec, res, log, hist):
             break
         if mode == REST:
             t_rest = t
-        if not _enter(mode, s, sigma, t, scene, rec, work):
+        if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
             status = PAINLEVE
 
     if not _finite(q, N_STATE):
