@@ -166,6 +166,13 @@ def scene_row(scene, records=None):
     return row
 
 
+def as_records(rows):
+    """Scene rows (shape (n, N_PAR) or (N_PAR,)) viewed, without a copy, as n records of
+    ``codes.SCENE_DTYPE``: the compiled code reads them by name (``row.body.B``)."""
+    rows = np.ascontiguousarray(rows, dtype=np.float64).reshape(-1, codes.N_PAR)
+    return rows.view(codes.SCENE_DTYPE).view(np.recarray)[:, 0]
+
+
 def record_buffer(records):
     """Concatenate record sample arrays into the shared buffer (never empty)."""
     if not records:
@@ -197,7 +204,7 @@ def run_scene(scene, history=False, max_log=100_000):
     n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
     t0 = time.process_time()
-    n_log, n_h = _run_scene(row, rec, res, log, hist)
+    n_log, n_h = _run_scene(as_records(row)[0], rec, res, log, hist)
     cpu = time.process_time() - t0
     status = int(res[codes.R_STATUS])
     overturned = status == codes.OVERTURNED
@@ -231,5 +238,5 @@ def run_cells(rows, rec):
         raise ValueError(f"`rows` must have shape (n, {codes.N_PAR}), got {rows.shape}")
     rec = np.ascontiguousarray(rec, dtype=np.float64)
     results = np.zeros((rows.shape[0], codes.N_RES))
-    _run_cells(rows, rec, results)
+    _run_cells(as_records(rows), rec, results)
     return results

@@ -1,10 +1,12 @@
 """Integer codes shared by the kernel and its users.
 
 Modes (the paper's six motion types), end statuses, ground-motion kinds, the layout of the
-flat float64 parameter row that describes one scene to the compiled code, the indices of
-the state vector, and the columns of the impact log and the history.  The name tuples feed
+flat float64 parameter row that describes one scene to the compiled code and the same row
+as a named record (``SCENE_DTYPE``), the indices of the state vector, and the columns of
+the impact log and the history.  The name tuples feed
 error messages and the CF ``flag_meanings`` of the output datasets.
 """
+import numpy as np
 
 # --- modes (Ishiyama's Fig. 1) -------------------------------------------------------------
 REST, SLIDE, ROTATION, SLIDE_ROTATION, TRANSLATION_JUMP, ROTATION_JUMP = range(6)
@@ -64,6 +66,29 @@ G_SIZE = 13
 P_GX = 25
 P_GY = P_GX + G_SIZE
 N_PAR = P_GY + G_SIZE
+
+# The same row as a numpy structured record (``SCENE_DTYPE``): compiled code reads the scene
+# by name (``row.body.B``, ``row.floor.x.amp``, ``row.solver.rtol``) through one pointer.
+# ``kernels.api`` views a float64 row (n, N_PAR) as records without copying.
+GROUND_FIELDS = ("kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
+                 "rec_off", "rec_n", "rec_dt")                       # G_KIND ... G_REC_DT
+SCENE_FIELDS = (("body", ("B", "H", "i2")),
+                ("contact", ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y")),
+                ("initial", ("theta", "omega", "u", "v", "lift")),
+                ("solver", ("method", "rtol", "atol", "dt", "max_step", "t_end", "max_steps",
+                            "max_events", "theta_over", "zeno_dt", "dt_out")),
+                ("floor", ("x", "y")))                               # P_B ... P_GY + G_DT
+
+
+def _record(names, formats):
+    return [(name, fmt) for name, fmt in zip(names, formats)]
+
+
+GROUND_DTYPE = np.dtype(_record(GROUND_FIELDS, ["f8"] * G_SIZE))
+SCENE_DTYPE = np.dtype([(group, _record(names, [GROUND_DTYPE if group == "floor" else "f8"]
+                                        * len(names))) for group, names in SCENE_FIELDS])
+assert SCENE_DTYPE.itemsize == 8 * N_PAR
+
 
 # Per-cell scalar results (float64 row).
 (R_STATUS, R_T_END, R_T_OVERTURN, R_DIRECTION, R_MAX_ABS_THETA, R_IMPACTS, R_T_REST,

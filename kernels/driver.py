@@ -18,12 +18,12 @@ import math
 import numpy as np
 
 from ._jit import jit
-from .codes import (BUDGET_EXHAUSTED, CLAMPED, CTX_S, CTX_SIGMA, ITHETA, LOG_FLAGS, LOG_OMEGA,
-                    LOG_T, N_HIST, N_LOG, N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED,
-                    PAINLEVE, R_A_AT_OVERTURN, R_DIRECTION, R_ENERGY_CLAMPS, R_EVENTS,
-                    R_F_AT_OVERTURN, R_IMPACTS, R_MAX_ABS_THETA, R_MAX_LIFT, R_MAX_SLIP,
-                    R_MODE_TIME, R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN, R_T_REST,
-                    R_V_AT_OVERTURN, REST, IOMEGA)
+from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTX_S, CTX_SIGMA, IOMEGA, ITHETA,
+                    LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG, N_MODES, N_STATE, NON_FINITE,
+                    OK, OVERTURNED, PAINLEVE, R_A_AT_OVERTURN, R_DIRECTION, R_ENERGY_CLAMPS,
+                    R_EVENTS, R_F_AT_OVERTURN, R_IMPACTS, R_MAX_ABS_THETA, R_MAX_LIFT,
+                    R_MAX_SLIP, R_MODE_TIME, R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN,
+                    R_T_REST, R_V_AT_OVERTURN, REST)
 from .event_search import first_event, polish
 from .events import event_values, n_events
 from .extremes import MAX_LIFT, MAX_SLIP, MAX_THETA, observe, observe_turns
@@ -87,13 +87,13 @@ def _report(res, status, t, t_rest, mode, counts, scene, work):
 
 
 @jit
-def run_scene(par, rec, res, log, hist):
+def run_scene(row, rec, res, log, hist):
     """Simulate one scene.
 
     Parameters
     ----------
-    par : ndarray, shape (N_PAR,)
-        The scene row (layout in ``codes``), SI units.
+    row : record of ``codes.SCENE_DTYPE``
+        The scene row (a float64 row of ``codes.N_PAR`` viewed as a record), SI units.
     rec : ndarray, shape (n,)
         Shared buffer of record samples [m/s^2] that the ground rows point into.
     res : ndarray, shape (N_RES,)
@@ -111,9 +111,11 @@ def run_scene(par, rec, res, log, hist):
     ----------
     PHYSICS.md sections 1-3; DESIGN.md section 3.
     """
-    scene = scene_of(par)
+    scene = scene_of(row)
     body, contact, floor, solver, _ = scene
-    tab = tableau(solver.method)
+    method = int(solver.method)
+    adaptive = method == ADAPTIVE     # the step size is controlled
+    tab = tableau(method)
     work = new_work()
     q, z, z_new, z_stage, q_end, K, ctx, values, scratch, extremes, mode_time = work
     g_old, g_new, g_last = values
@@ -131,7 +133,7 @@ def run_scene(par, rec, res, log, hist):
     events = 0
     steps = 0
     clamps = 0
-    dt_next = solver.dt if not solver.adaptive else min(solver.max_step, FIRST_STEP)
+    dt_next = solver.dt if not adaptive else min(solver.max_step, FIRST_STEP)
     mode, s, sigma = initial_mode(q, scene, rec)
     if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
         status = PAINLEVE
@@ -165,18 +167,18 @@ def run_scene(par, rec, res, log, hist):
             break
         t_brk = next_break(t, floor)
         t_lim = t_brk - BREAK_GUARD if t_brk < math.inf else math.inf
-        if not solver.adaptive:
+        if not adaptive:
             dt_next = solver.dt
         dt = min(dt_next, solver.max_step, t_end - t, t_brk - t)
         err = step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
         steps += 1
         if not _finite(z_new, n):
-            if solver.adaptive and dt > MIN_RETRY_DT:
+            if adaptive and dt > MIN_RETRY_DT:
                 dt_next = RETRY_SHRINK * dt
                 continue
             status = NON_FINITE
             break
-        if solver.adaptive:
+        if adaptive:
             dt_next = next_step_size(dt, err, err_old, tab.order)
             if err > 1.0:
                 if dt_next < MIN_DT * max(1.0, t):
@@ -258,9 +260,10 @@ def run_scene(par, rec, res, log, hist):
 
 
 @jit
-def run_cells(pars, rec, results):
-    """Run every scene row of ``pars`` (shape (n, N_PAR)) into ``results`` (n, N_RES)."""
+def run_cells(rows, rec, results):
+    """Run every scene row of ``rows`` (n records of ``codes.SCENE_DTYPE``) into
+    ``results`` (n, N_RES)."""
     log = np.zeros((0, N_LOG))
     hist = np.zeros((0, N_HIST))
-    for i in range(pars.shape[0]):
-        run_scene(pars[i], rec, results[i], log, hist)
+    for i in range(rows.shape[0]):
+        run_scene(rows[i], rec, results[i], log, hist)

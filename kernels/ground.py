@@ -1,43 +1,25 @@
 """Floor acceleration a_x(t), a_y(t) evaluated inside compiled code.
 
-Each component is a ``Ground`` record read from ``G_SIZE`` floats of the scene row (layout
-in ``codes.py``); a record component points into ``rec``, the buffer of record samples
-shared by the scenes of a chunk, which is passed beside the scene.  Every kind is zero
+Each component is a record of ``codes.GROUND_DTYPE`` (``scene.floor.x``, ``scene.floor.y``:
+kind, amp, freq, phase, start, dur, f0, f1, law, hold, rec_off, rec_n, rec_dt; SI units);
+amp is a sine's or pulse's acceleration amplitude, a sweep's held amplitude (m/s^2, m/s or
+m after ``hold``) or a record's scale; freq a sine's frequency [Hz] or a sweep's rate
+(d ln f/dt for the log law, df/dt for the linear one).  A record component points into
+``rec``, the buffer of record samples shared by the scenes of a chunk, passed beside the
+scene.  Every kind is zero
 outside its window [start, start + duration).  ``next_break`` gives the next instant at
 which a component is not smooth (window edges, record samples, the apex of a triangular
 pulse) so that the integrator never steps across a kink or a jump.
 """
 import math
-from collections import namedtuple
 
 from ._jit import jit
-from .codes import (G_AMP, G_DUR, G_F0, G_FREQ, G_HOLD, G_KIND, G_LAW, G_NONE, G_PHASE,
-                    G_PULSE_RECT, G_PULSE_TRI, G_REC_DT, G_REC_N, G_REC_OFF, G_RECORD, G_SINE,
-                    G_START, G_SWEEP, HOLD_ACCELERATION, HOLD_VELOCITY, LAW_LOG)
+from .codes import (G_NONE, G_PULSE_RECT, G_PULSE_TRI, G_RECORD, G_SINE, G_SWEEP,
+                    HOLD_ACCELERATION, HOLD_VELOCITY, LAW_LOG)
 
 TWO_PI = 2.0 * math.pi
 G = 9.80665  # standard gravity [m/s^2]
 SCAN_FRACTION = 0.125   # of a period: an interval this long holds at most one extremum
-
-Ground = namedtuple("Ground", "kind amp freq phase start dur f0 law hold rec_off rec_n rec_dt")
-Ground.__doc__ = """One floor component (SI): kind (``codes.G_*``); amp: sine/pulse
-acceleration amplitude, sweep: the held amplitude (m/s^2, m/s or m after ``hold``), record:
-scale factor; freq: sine frequency [Hz] or sweep rate (d ln f/dt for the log law, df/dt for
-the linear one); phase [rad]; start, dur: the window [s]; f0: sweep start frequency;
-rec_off, rec_n, rec_dt: the record's slice of ``rec`` and its sample step."""
-
-Floor = namedtuple("Floor", "x y")
-Floor.__doc__ = "The horizontal and vertical ``Ground`` components of the floor motion."
-
-
-@jit
-def ground_of(par, off):
-    """The ``Ground`` record of the component at ``off`` of a scene row."""
-    return Ground(par[off + G_KIND], par[off + G_AMP], par[off + G_FREQ], par[off + G_PHASE],
-                  par[off + G_START], par[off + G_DUR], par[off + G_F0], par[off + G_LAW],
-                  par[off + G_HOLD], par[off + G_REC_OFF], par[off + G_REC_N],
-                  par[off + G_REC_DT])
-
 
 @jit(inline="always")
 def sweep_phase(tau, g):

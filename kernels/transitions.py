@@ -37,7 +37,7 @@ from .face_impact import face_impact
 from .ground import G, ground
 from .motion import corner, corner_velocity, rotation_dynamics, slide_rotation_dynamics
 from .tolerances import ROCKING_ROUNDOFF
-from .zeno import leaves, rocking_closes, stop_corner
+from .zeno import closing_speed, leaves, rocking_closes, stop_corner
 
 NOT_AN_IMPACT = -1       # impact flags of an event that was not an impact
 
@@ -151,7 +151,7 @@ def select_face(q, a_x, g_e, body, contact, solver):
     slip velocity).
     """
     b, h, i2 = body
-    v_tol = solver.v_tol
+    v_tol = closing_speed(solver.zeno_dt)
     if abs(q[IOMEGA]) * b <= ROCKING_ROUNDOFF * (abs(q[IU]) + abs(q[IV])):
         q[IOMEGA] = 0.0                 # round-off of a rotation-free impulse, not rocking
     omega = q[IOMEGA]
@@ -203,7 +203,8 @@ def initial_mode(q, scene, rec):
         rcx, rcy = corner(s, theta, b, h)
         q[IY] = -rcy
         q[IV] = -omega * rcx          # the contact corner does not move vertically
-        return select_corner(q, s, a_x, g_e, body, scene.contact, scene.solver.v_tol)
+        return select_corner(q, s, a_x, g_e, body, scene.contact,
+                             closing_speed(scene.solver.zeno_dt))
     q[IY] = h
     if q[IV] > 0.0:
         return TRANSLATION_JUMP, 0.0, 0.0
@@ -237,6 +238,7 @@ def on_event(k, mode, t, q, ctx, scene, rec):
     g_e = G + a_y
     s = ctx[CTX_S]
     sigma = ctx[CTX_SIGMA]
+    v_tol = closing_speed(scene.solver.zeno_dt)
     if mode == ROTATION or mode == SLIDE_ROTATION:
         if k == EV_OVERTURN:
             return mode, s, sigma, OVERTURNED, NOT_AN_IMPACT
@@ -249,7 +251,7 @@ def on_event(k, mode, t, q, ctx, scene, rec):
             return SLIDE_ROTATION, s, -math.copysign(1.0, F), OK, NOT_AN_IMPACT
         if k == EV_SLIP:                                # the slipping corner stops
             q[IU] = q[IOMEGA] * corner(s, q[ITHETA], b, h)[1]
-            m, s2, sg2 = select_corner(q, s, a_x, g_e, body, contact, scene.solver.v_tol)
+            m, s2, sg2 = select_corner(q, s, a_x, g_e, body, contact, v_tol)
             return m, s2, sg2, OK, NOT_AN_IMPACT
         q[ITHETA] = 0.0                                 # EV_IMPACT: the other corner strikes
         return _face_landing(mode, s, sigma, q, a_x, g_e, scene)
@@ -270,9 +272,9 @@ def on_event(k, mode, t, q, ctx, scene, rec):
     flags = corner_impact(q, sc, body, contact)
     if flags & IMPACT_PAINLEVE:
         return mode, s, sigma, PAINLEVE, flags
-    if leaves(corner_velocity(q, sc, b, h)[1], scene.solver.v_tol):   # still airborne
+    if leaves(corner_velocity(q, sc, b, h)[1], v_tol):   # still airborne
         return ROTATION_JUMP, 0.0, 0.0, OK, flags
-    m, s2, sg2 = select_corner(q, sc, a_x, g_e, body, contact, scene.solver.v_tol)
+    m, s2, sg2 = select_corner(q, sc, a_x, g_e, body, contact, v_tol)
     return m, s2, sg2, OK, flags
 
 

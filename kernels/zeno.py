@@ -2,7 +2,7 @@
 
 An accumulation of impacts (a bounce or rocking decaying geometrically) would take
 infinitely many events in finite time.  The kernel closes it: a corner moving away from the
-floor or along it slower than v_tol = g zeno_dt / 2 (``state.Solver``) would be back or
+floor or along it slower than v_tol = g zeno_dt / 2 (``closing_speed``) would be back or
 stopped within zeno_dt, so it is stopped now by the plastic impulse at the corner, never by
 dropping velocity components, so that no closure adds energy; and rocking whose next impact
 would come within zeno_dt is closed to face contact.  The mode table (``transitions``)
@@ -10,6 +10,13 @@ asks these questions; the answers are here.
 """
 from ._jit import jit
 from .corner_impact import apply_impulse, delassus
+from .ground import G
+
+
+@jit(inline="always")
+def closing_speed(zeno_dt):
+    """v_tol: a bounce this slow lands again within zeno_dt (flight time 2 v / g)."""
+    return 0.5 * G * zeno_dt
 
 
 @jit(inline="always")

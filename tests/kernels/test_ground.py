@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from kernels import api, codes, ground, state
+from kernels import api, codes, ground
 
 TWO_PI = 2.0 * math.pi
 
@@ -22,7 +22,7 @@ def floor_of(horizontal=None, vertical=None):
     row = api.scene_row({"body": {"B": 0.1, "H": 0.3},
                          "excitation": {"horizontal": horizontal, "vertical": vertical}},
                         records)
-    return state.scene_of(row).floor, api.record_buffer(records)
+    return row.view(codes.SCENE_DTYPE).view(np.recarray)[0].floor, api.record_buffer(records)
 
 
 def a_x(t, floor, rec):

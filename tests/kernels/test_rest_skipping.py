@@ -4,11 +4,12 @@ and a combined horizontal and vertical motion (asin of the threshold ratio, line
 and ``rest_threshold`` = min(mu_s, b/h).
 """
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from kernels import api, rest_skipping, state
+from kernels import api, codes, rest_skipping, state
 
 G = 9.80665
 TWO_PI = 2.0 * math.pi
@@ -20,7 +21,12 @@ def scene_of(horizontal=None, vertical=None, **contact):
     row = api.scene_row({"body": {"B": 0.1, "H": 0.3}, "contact": contact,
                          "excitation": {"horizontal": horizontal, "vertical": vertical}},
                         records)
-    return state.scene_of(row), api.record_buffer(records)
+    b, h = 0.5 * row[codes.P_B], 0.5 * row[codes.P_H]
+    c = row.view(codes.SCENE_DTYPE)[0]["contact"]
+    scene = SimpleNamespace(floor=row.view(codes.SCENE_DTYPE)[0]["floor"],
+                            body=state.Body(b, h, row[codes.P_I2]),
+                            contact=state.Contact(*(float(c[name]) for name in c.dtype.names)))
+    return scene, api.record_buffer(records)
 
 
 def exit_time(horizontal=None, vertical=None, kappa=0.3, t=0.0, t_stop=10.0):
