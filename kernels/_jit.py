@@ -6,10 +6,17 @@ and no fastmath (it would silently break ``isnan``/``isfinite``).  The small fun
 called inside every step (floor motion, corner geometry, mode dynamics, right-hand side) are
 compiled with ``jit(inline="always")``: a call between compiled functions that pass arrays
 costs more than their arithmetic (the steady-rocking scene runs ~1.4x faster inlined).  With
-``NUMBA_DISABLE_JIT=1`` the decorator returns plain Python functions.
+``NUMBA_DISABLE_JIT=1`` the decorator returns plain Python functions (``DISABLED``).
+
+Reference counts: numba counts a reference each time compiled code receives an array that
+owns its memory or takes one out of a tuple, with an atomic operation.  Arrays that are
+fields of one record allocation (``state.WORK_DTYPE``) or module constants own nothing and
+are passed for free; the kernel keeps its buffers there (the steady-rocking scene: 85,000
+counts before, 8,800 after, and 30 % faster).
 """
 import numba
 
+DISABLED = numba.config.DISABLE_JIT
 _OPTIONS = dict(cache=True, error_model="numpy", fastmath=False, nogil=True)
 
 

@@ -116,9 +116,12 @@ def run_scene(row, rec, res, log, hist):
     method = int(solver.method)
     adaptive = method == ADAPTIVE     # the step size is controlled
     tab = tableau(method)
-    work = new_work()
-    q, z, z_new, z_stage, q_end, K, ctx, values, scratch, extremes, mode_time = work
-    g_old, g_new, g_last = values
+    buffers = new_work()
+    work = buffers[0]
+    q, z, z_new, z_stage, q_end = work.q, work.z, work.z_new, work.z_stage, work.q_end
+    K, ctx, values, scratch = work.K, work.ctx, work.values, work.scratch
+    extremes, mode_time = work.extremes, work.mode_time
+    g_old, g_new, g_last = values.old, values.new, values.last
     P, end = tab.P, tab.stages
     t_end = solver.t_end
     t_still = ground_end(floor)
@@ -255,7 +258,8 @@ def run_scene(row, rec, res, log, hist):
     if status == OK and mode == REST and t < t_end:
         mode_time[REST] += t_end - t                    # final rest lasts to the end
         nh = hold(hist, nh, t_end, q, REST, floor, rec, solver.dt_out)
-    _report(res, status, t, t_rest, mode, (impacts, steps, events, clamps), scene, work)
+    _report(res, status, t, t_rest, mode, (impacts, steps, events, clamps), scene,
+            buffers[0])                                 # buffers live to the end
     return nlog, nh
 
 

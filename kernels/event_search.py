@@ -41,8 +41,8 @@ def first_event(step, ctx, scene, rec, values, scratch):
     it does; k = -1 if none does, and then ``values.last`` holds the event values at the
     step's end.  ``values.old`` holds them at the step's start."""
     mode, z, z_new = step.mode, step.z, step.z_new
-    g_old, g_new, g_last = values
-    z_x, q_x, g_x = scratch
+    g_old, g_new, g_last = values.old, values.new, values.last
+    z_x, q_x, g_x = scratch.z, scratch.q, scratch.g
     ne = n_events(mode)
     for k in range(ne):
         g_last[k] = g_old[k]
@@ -88,7 +88,7 @@ def polish(k, step, ctx, scene, rec, scratch):
     mode, z, dt = step.mode, step.z_new, step.dt
     f = step.K[step.end]
     t = step.t + dt
-    zbuf, q, g = scratch
+    zbuf, q, g = scratch.z, scratch.q, scratch.g
     to_full(mode, z, ctx, scene.body, q)
     g0 = event_value(k, mode, t, q, ctx, scene, rec, g)
     delta = POLISH_DELTA * dt

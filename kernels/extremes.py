@@ -9,7 +9,7 @@ from .motion import corner, corner_velocity, to_full
 from .roots import regula_falsi
 from .tolerances import TURN_XTOL
 
-MAX_THETA, MAX_SLIP, MAX_LIFT = range(3)     # entries of ``Work.extremes``
+MAX_THETA, MAX_SLIP, MAX_LIFT = range(3)     # entries of the scene's ``extremes``
 N_EXTREMES = 3
 
 

@@ -9,15 +9,16 @@ are one array shared by a chunk of scenes, passed beside the scene as ``rec``.  
 stay out of the scene on purpose: numba counts references to every array a compiled
 function receives or takes out of a record, and passes a record of many scalars as many
 arguments; in the step loop either would cost as much as the physics.
-``Work`` holds every buffer of a scene, allocated once; a ``Step`` is one taken step,
-which the dense output, the event search and the extremes read.  SI units, per unit mass;
+``WORK_DTYPE`` holds every buffer of a scene in one allocation; a ``Step`` is one taken
+step, which the dense output, the event search and the extremes read.  ``WORK_DTYPE`` holds every
+buffer of a scene in one record, whose array fields carry no reference count.  SI units, per unit mass;
 b and h are the half-breadth and half-height (PHYSICS.md 1.1).
 """
 from collections import namedtuple
 
 import numpy as np
 
-from ._jit import jit
+from ._jit import DISABLED, jit
 from .codes import N_CTX, N_MODES, N_STATE
 from .extremes import N_EXTREMES
 from .tableaus import MAX_STAGES
@@ -35,27 +36,35 @@ Scene.__doc__ = """``Body`` and ``Contact`` (derived from the row), and the row'
 ``codes.SCENE_DTYPE``: floor (x, y: ``codes.GROUND_DTYPE``), solver options and initial
 values, read by name."""
 
-Values = namedtuple("Values", "old new last")
-Values.__doc__ = """Event function values at the step's start (old), at a sample inside it (new)
-and at the last sample without an event (last)."""
+MAX_EVENTS = 5        # the most event functions of any mode (``events.n_events``)
 
-Scratch = namedtuple("Scratch", "z q g")
-Scratch.__doc__ = """Scratch for a state taken from the dense output: compact z, full q, and
-the event values g computed on the way."""
+VALUES_DTYPE = np.dtype([("old", "f8", (MAX_EVENTS,)), ("new", "f8", (MAX_EVENTS,)),
+                         ("last", "f8", (MAX_EVENTS,))])
+"""Event function values at the step's start (old), at a sample inside it (new) and at the
+last sample without an event (last)."""
 
-Work = namedtuple("Work", "q z z_new z_stage q_end K ctx values scratch extremes mode_time")
-Work.__doc__ = """Buffers of one scene: the full state q at the step's start and q_end at
-its end, the mode's compact state z and z_new, stage scratch, the stages K, the mode's
-contact ``ctx`` (``codes.CTX_*``), the event ``Values``, dense-output ``Scratch``, the
-running extremes and the time spent in each mode.  The driver unpacks it once: every
-compiled function gets only the buffers it uses."""
+SCRATCH_DTYPE = np.dtype([("z", "f8", (N_STATE,)), ("q", "f8", (N_STATE,)),
+                          ("g", "f8", (MAX_EVENTS,))])
+"""Scratch for a state taken from the dense output: compact z, full q, and the event
+values g computed on the way."""
+
+WORK_DTYPE = np.dtype([("q", "f8", (N_STATE,)), ("z", "f8", (N_STATE,)),
+                       ("z_new", "f8", (N_STATE,)), ("z_stage", "f8", (N_STATE,)),
+                       ("q_end", "f8", (N_STATE,)), ("K", "f8", (MAX_STAGES + 1, N_STATE)),
+                       ("ctx", "f8", (N_CTX,)), ("values", VALUES_DTYPE),
+                       ("scratch", SCRATCH_DTYPE), ("extremes", "f8", (N_EXTREMES,)),
+                       ("mode_time", "f8", (N_MODES,))])
+"""The buffers of one scene, as one record: the full state q at the step's start and q_end
+at its end, the mode's compact state z and z_new, stage scratch, the stages K, the mode's
+contact ``ctx`` (``codes.CTX_*``), the event values, dense-output scratch, the running
+extremes and the time spent in each mode.  Its fields are arrays inside one allocation,
+which compiled code passes without counting references."""
 
 Step = namedtuple("Step", "mode n t dt z z_new K P end")
 Step.__doc__ = """One taken step of ``mode`` from t to t + dt: the compact states z and z_new
 (n entries), the stages K it was taken with, the tableau's interpolation matrix P and the
 row ``end`` of K that holds f(t + dt, z_new)."""
 
-MAX_EVENTS = 5        # the most event functions of any mode (``events.n_events``)
 
 
 @jit(inline="always")          # it returns records, which have no Python form
@@ -71,9 +80,12 @@ def scene_of(row):
 
 @jit
 def new_work():
-    """Every buffer of one scene, zeroed."""
-    return Work(np.zeros(N_STATE), np.zeros(N_STATE), np.zeros(N_STATE), np.zeros(N_STATE),
-                np.zeros(N_STATE), np.zeros((MAX_STAGES + 1, N_STATE)), np.zeros(N_CTX),
-                Values(np.zeros(MAX_EVENTS), np.zeros(MAX_EVENTS), np.zeros(MAX_EVENTS)),
-                Scratch(np.zeros(N_STATE), np.zeros(N_STATE), np.zeros(MAX_EVENTS)),
-                np.zeros(N_EXTREMES), np.zeros(N_MODES))
+    """The buffers of one scene, zeroed: a one-element array of ``WORK_DTYPE`` (keep it while
+    its record, ``[0]``, is used)."""
+    return np.zeros(1, WORK_DTYPE)
+
+
+if DISABLED:
+    def new_work():         # noqa: F811 -- plain Python reads fields by name through recarray
+        """The buffers of one scene, zeroed (plain Python)."""
+        return np.zeros(1, WORK_DTYPE).view(np.recarray)
