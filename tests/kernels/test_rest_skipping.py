@@ -22,8 +22,9 @@ def scene_of(horizontal=None, vertical=None, **contact):
                          "excitation": {"horizontal": horizontal, "vertical": vertical}},
                         records)
     b, h = 0.5 * row[codes.P_B], 0.5 * row[codes.P_H]
-    c = row.view(codes.SCENE_DTYPE)[0]["contact"]
-    scene = SimpleNamespace(floor=row.view(codes.SCENE_DTYPE)[0]["floor"],
+    record = api.as_records(row)[0]
+    c = record.contact
+    scene = SimpleNamespace(floor=record.floor,
                             body=state.Body(b, h, row[codes.P_I2]),
                             contact=state.Contact(*(float(c[name]) for name in c.dtype.names)))
     return scene, api.record_buffer(records)
