@@ -15,11 +15,10 @@ every problem at once, as scene and study files do.
 from dataclasses import dataclass
 from typing import Annotated, Optional, Union
 
-from pydantic import (BeforeValidator, Field, StrictBool, StrictFloat, StrictInt, StrictStr,
-                      ValidationError)
+from pydantic import Field, StrictBool, StrictFloat, StrictInt, StrictStr, ValidationError
 
 from .problems import FileProblems, validation_problems
-from .scene_schema import Length, StrictModel
+from .scene_schema import Coefficient, Length, StrictModel
 from .yamlio import read_yaml, top_level_problems
 
 
@@ -36,13 +35,6 @@ class Body:
     direction: str = None
 
 
-def _not_bool(value):
-    """Refuse true/false where a number is meant (YAML's booleans are ints to Python)."""
-    if isinstance(value, bool):
-        raise ValueError("must be a number >= 0")
-    return value
-
-
 class BodyEntry(StrictModel):
     """An entry of ``bodies``: size, state and what else is known of the body."""
 
@@ -51,7 +43,7 @@ class BodyEntry(StrictModel):
     H: Length
     i_g: Optional[Length] = None
     overturned: StrictBool
-    mu: Optional[Annotated[float, BeforeValidator(_not_bool), Field(ge=0)]] = None
+    mu: Optional[Coefficient] = None
     direction: Optional[StrictStr] = None
 
 

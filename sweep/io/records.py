@@ -7,7 +7,9 @@ Arrays are read-only and cached, so that a study reading the same record per cel
 """
 import functools
 import importlib.resources
+import math
 import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,6 +30,10 @@ _UNIFORM_TOL = 0.01
 # sweep/__init__.py existed presents sweep as a namespace package.
 _DATA = importlib.resources.files("sweep.data") / "records"
 _DT_DIGITS = 12  # significant digits kept of dt fitted to printed times (0.02, not 0.0199...)
+# Most samples a record may have once on its uniform grid: 80 MB of float64, 28 hours at
+# dt = 0.01 s.  A file of a few rows whose median step is tiny would otherwise be resampled
+# into terabytes.
+MAX_SAMPLES = 10_000_000
 
 
 class RecordError(ValueError):
@@ -86,25 +92,45 @@ def _uniform(t, a, source):
     if not np.all(steps > 0):
         row = int(np.argmin(steps > 0)) + 2
         raise RecordError(f"{source}: times must increase (data row {row})")
+    if not np.isfinite(t[-1] - t[0]):
+        raise RecordError(f"{source}: the times span more than the float range")
     dt = _round(float((t[-1] - t[0]) / (len(t) - 1)))
     if np.max(np.abs(t - t[0] - dt * np.arange(len(t)))) <= _UNIFORM_TOL * dt:
         return dt, a, ""
     dt = _round(float(np.median(steps)))
     # 1e-9 keeps the last time when (t[-1] - t[0])/dt is an integer up to rounding
-    grid = t[0] + dt * np.arange(int(np.floor((t[-1] - t[0]) / dt + 1e-9)) + 1)
+    count = np.floor((t[-1] - t[0]) / dt + 1e-9) + 1
+    if not count <= MAX_SAMPLES:
+        raise RecordError(f"{source}: non-uniform times resampled onto their median step dt = "
+                          f"{dt:g} s would make {count:g} samples, more than {MAX_SAMPLES}")
+    grid = t[0] + dt * np.arange(int(count))
     note = (f"; non-uniform times resampled linearly onto dt = {dt:g} s "
             f"(the median step), {len(grid)} samples")
     return dt, np.interp(grid, t, a), note
 
 
+def _finite(values, path, what):
+    """Refuse NaN and infinite values (written as nan, inf or beyond the float range)."""
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        raise RecordError(f"{path}: {what} {bad[0] + 1} is not a finite number: "
+                          f"{values.flat[bad[0]]}")
+
+
 def _read_columns(path):
     try:
-        data = np.loadtxt(path, comments="#", ndmin=2)
+        with warnings.catch_warnings():  # an empty file is reported below, not warned about
+            warnings.simplefilter("ignore", UserWarning)
+            data = np.loadtxt(path, comments="#", ndmin=2)
     except (OSError, ValueError) as err:
         raise RecordError(f"{path}: cannot read as a two-column text file: {err}") from None
+    if data.size == 0:
+        raise RecordError(f"{path}: no data rows")
     if data.shape[1] != 2:
         raise RecordError(f"{path}: expected two columns (time, acceleration), "
                           f"found {data.shape[1]}")
+    _finite(data[:, 0], path, "the time of data row")
+    _finite(data[:, 1], path, "the acceleration of data row")
     return data[:, 0], data[:, 1]
 
 
@@ -182,6 +208,7 @@ def read_at2(path):
         raise RecordError(f"{path}: a value after the header is not a number: {err}") from None
     if len(values) != npts:
         raise RecordError(f"{path}: header says NPTS = {npts}, found {len(values)} values")
+    _finite(values, path, "value")
     provenance = f"{path}: PEER NGA AT2, {lines[1].strip()}, NPTS = {npts}, DT = {dt:g} s, g"
     return Record(str(path), dt, _frozen(values * criteria.G), provenance)
 
@@ -197,7 +224,7 @@ def _at2_npts_dt(line, path):
             n, step = int(first), float(second)
     except ValueError:
         n, step = 0, 0.0
-    if n < 2 or not step > 0:
+    if n < 2 or not 0 < step < math.inf:
         raise RecordError(f"{path}: line 4 should give NPTS and DT, got: {line.strip()}")
     return n, step
 

@@ -9,13 +9,15 @@ how a study gives each cell its values.
 """
 import copy
 import math
+import sys
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, PlainValidator,
-                      ValidationError, ValidationInfo, field_validator, model_validator)
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
+                      PlainValidator, ValidationError, ValidationInfo, field_validator,
+                      model_validator)
 
-from kernels.api import DEFAULTS
+from kernels.api import DEFAULTS, scene_row
 
 from . import records, units
 from .units import Quantity
@@ -27,6 +29,7 @@ T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to sett
 KINDS = ("none", "sine", "sweep", "record", "pulse")
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
+MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 parameter row holds exactly
 
 
 def quantity(*dimensions, gt=None, ge=None):
@@ -42,13 +45,25 @@ def quantity(*dimensions, gt=None, ge=None):
                      AfterValidator(check)]
 
 
+def _plain_number(value):
+    """Refuse true/false where a number is meant (YAML's booleans are ints to Python), and an
+    integer beyond the float range."""
+    if isinstance(value, bool):
+        raise ValueError("must be a number, not true/false")
+    if isinstance(value, int) and abs(value) > sys.float_info.max:
+        raise ValueError("must be a finite number")
+    return value
+
+
+Real = Annotated[float, BeforeValidator(_plain_number)]
+Count = Annotated[int, BeforeValidator(_plain_number), Field(gt=0, le=MAX_COUNT)]
 Length = quantity("length", gt=0)
 Instant = quantity("time", ge=0)
 Duration = quantity("time", gt=0)
 Frequency = quantity("frequency", gt=0)
 Angle = quantity("angle")
 Acceleration = quantity("acceleration")
-Coefficient = Annotated[float, Field(ge=0)]
+Coefficient = Annotated[Real, Field(ge=0)]
 
 
 class StrictModel(BaseModel):
@@ -70,6 +85,14 @@ class Body(StrictModel):
     H: Length
     i_g: Optional[Length] = None
 
+    @field_validator("i_g")
+    @classmethod
+    def _square_finite(cls, i_g):
+        """The kernel takes i_g squared."""
+        if i_g is not None and not math.isfinite(i_g.to_si() * i_g.to_si()):
+            raise ValueError("too large: its square leaves the float range")
+        return i_g
+
 
 class Contact(StrictModel):
     """Friction and restitution; ``mu`` sets all four friction coefficients, explicit ones win."""
@@ -79,8 +102,8 @@ class Contact(StrictModel):
     mu_k: Optional[Coefficient] = None
     mu_edge_s: Optional[Coefficient] = None
     mu_edge_k: Optional[Coefficient] = None
-    e_x: Optional[Annotated[float, Field(ge=-1, le=1)]] = None
-    e_y: Optional[Annotated[float, Field(ge=0, le=1)]] = None
+    e_x: Optional[Annotated[Real, Field(ge=-1, le=1)]] = None
+    e_y: Optional[Annotated[Real, Field(ge=0, le=1)]] = None
 
 
 class _Ground(StrictModel):
@@ -138,7 +161,7 @@ class RecordMotion(_Ground):
     name: Optional[str] = None
     units: Optional[str] = None
     path: Optional[str] = None
-    scale: Optional[float] = None
+    scale: Optional[Real] = None
     pga: Optional[quantity("acceleration", gt=0)] = None
 
     @field_validator("name")
@@ -220,13 +243,13 @@ class Solver(StrictModel):
     """Integrator and guards (PHYSICS.md 3); ``t_end`` defaults from the excitation."""
 
     method: Optional[Literal["adaptive", "fixed"]] = None
-    rtol: Optional[Annotated[float, Field(gt=0)]] = None
-    atol: Optional[Annotated[float, Field(gt=0)]] = None
+    rtol: Optional[Annotated[Real, Field(gt=0)]] = None
+    atol: Optional[Annotated[Real, Field(gt=0)]] = None
     dt: Optional[Duration] = None
     max_step: Optional[Duration] = None
     t_end: Optional[Duration] = None
-    max_steps: Optional[Annotated[int, Field(gt=0)]] = None
-    max_events: Optional[Annotated[int, Field(gt=0)]] = None
+    max_steps: Optional[Count] = None
+    max_events: Optional[Count] = None
     theta_overturn: Optional[quantity("angle", gt=0)] = None
     zeno_dt: Optional[Duration] = None
     dt_out: Optional[Duration] = None
@@ -359,6 +382,9 @@ def _ground(g, body):
     else:
         rec = (records.load_record(g.name) if g.name is not None
                else records.read_record_file(g.path, g.units))
+        if g.pga is not None and not rec.pga > 0:
+            raise FileProblems([Problem("pga", str(g.pga), "the record is zero throughout: it "
+                                                           "cannot be scaled to a peak")])
         scale = (g.pga.to_si(body) / rec.pga if g.pga is not None
                  else defaults["scale"] if g.scale is None else g.scale)
         out.update(samples=rec.samples, dt=rec.dt, scale=scale)
@@ -391,6 +417,12 @@ def resolve_scene(scene):
         a record has ``samples`` [m/s^2, read-only], ``dt`` and ``scale`` (from ``pga`` if
         given).  Without ``solver.t_end``: the end of the excitation + 5 s when every component
         ends, else ``DEFAULTS["solver"]["t_end"]``.
+
+    Raises
+    ------
+    FileProblems
+        A value that the kernel refuses once in SI (out of the float range), or ``pga`` asked
+        of a record that is zero throughout.
     """
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
@@ -404,8 +436,12 @@ def resolve_scene(scene):
         elif key.startswith("mu") and scene.contact.mu is not None:
             contact[key] = scene.contact.mu
 
-    excitation = {"horizontal": _ground(scene.excitation.horizontal, body),
-                  "vertical": _ground(scene.excitation.vertical, body)}
+    excitation = {}
+    for key in ("horizontal", "vertical"):
+        try:
+            excitation[key] = _ground(getattr(scene.excitation, key), body)
+        except FileProblems as err:
+            raise err.with_prefix(f"excitation.{key}") from None
 
     initial = {key: _si(getattr(scene.initial, key), default, body)
                for key, default in DEFAULTS["initial"].items()}
@@ -419,5 +455,23 @@ def resolve_scene(scene):
         ends = [e for e in map(_end, excitation.values()) if e is not None]
         if ends and all(math.isfinite(e) for e in ends):
             solver["t_end"] = max(ends) + T_TAIL
-    return {"body": body, "contact": contact, "excitation": excitation, "initial": initial,
-            "solver": solver}
+    resolved = {"body": body, "contact": contact, "excitation": excitation,
+                "initial": initial, "solver": solver}
+    _check_packable(resolved, scene)
+    return resolved
+
+
+def _check_packable(resolved, scene):
+    """Raise :class:`FileProblems` if the kernel refuses a resolved value: values within range
+    as written may leave the float range in SI (a displacement amplitude times omega^2)."""
+    try:
+        scene_row(resolved, [])
+    except (ValueError, ArithmeticError) as err:  # the kernel names the path in backticks
+        text = str(err)
+        path = text.split("`")[1] if text.count("`") >= 2 else "(scene)"
+        node = scene
+        for key in path.split("."):
+            node = getattr(node, key, None)
+        given = MISSING if node is None else str(node) if isinstance(node, Quantity) else node
+        message = text.replace(f"`{path}` ", "").replace("`", "")
+        raise FileProblems([Problem(path, given, f"in SI units: {message}")]) from None

@@ -22,8 +22,6 @@ import numpy as np
 import yaml
 from pydantic import AfterValidator, BeforeValidator, ValidationError, model_validator
 
-from kernels.api import scene_row
-
 from ..runner import grid
 from . import units
 from .scene_schema import load_scene, resolve_scene
@@ -34,6 +32,18 @@ from .yamlio import parse_yaml, read_text, top_level_problems
 
 SPACINGS = ("linear", "log")
 OUTPUT_DIR = "results"  # default output: results/<name>.nc, relative to the working directory
+# Largest grid accepted unless the caller lifts the limit (``sweep.run --max-cells``): two
+# million cells take days of CPU at the typical 0.1-1 s a cell, and their merged arrays some
+# hundreds of MB; a larger count is more likely a typo in ``num`` than a plan.
+MAX_CELLS = 2_000_000
+MAX_CELL_IDS = np.iinfo(np.int64).max  # cells are numbered by int64 ids, with or without a limit
+MAX_AXIS_VALUES = 1_000_000  # values of one axis: far finer than any figure, a bounded list
+# Grids up to CHECK_ALL_CELLS cells have every cell's scene checked; larger ones, each value of
+# every dimension (at most CHECKED_PER_DIM of them: both ends and a seeded sample) with the other
+# dimensions at their first value, and SAMPLED_CELLS seeded random cells (see _checked_cells).
+CHECK_ALL_CELLS = 10_000
+CHECKED_PER_DIM = 1_000
+SAMPLED_CELLS = 1_000
 
 # CF units of coordinates, by dimension (udunits spelling)
 CF_UNITS = {"acceleration": "m s-2", "velocity": "m s-1", "length": "m", "angle": "rad",
@@ -170,11 +180,19 @@ def _finite(value):
 
 
 def _count(value):
-    return isinstance(value, int) and not isinstance(value, bool) and value >= 1
+    return isinstance(value, int) and not isinstance(value, bool) and \
+        1 <= value <= MAX_AXIS_VALUES
 
 
 def _non_empty(kind):
     return lambda value: isinstance(value, kind) and bool(value)
+
+
+def _axis_list(value):
+    return isinstance(value, list) and 1 <= len(value) <= MAX_AXIS_VALUES
+
+
+AXIS_LIST = f"must be a non-empty list of at most {MAX_AXIS_VALUES} values"
 
 
 Bound = Annotated[Any, AfterValidator(_rule(_finite, "must be a finite number"))]
@@ -185,12 +203,12 @@ class RangeSpec(StrictModel):
 
     start: Optional[Bound] = None
     stop: Optional[Bound] = None
-    num: Optional[Annotated[Any, AfterValidator(_rule(_count, "must be an integer >= 1"))]] = None
+    num: Optional[Annotated[Any, AfterValidator(_rule(
+        _count, f"must be an integer >= 1, at most {MAX_AXIS_VALUES}"))]] = None
     spacing: Optional[Annotated[Any, AfterValidator(_rule(
         lambda v: v in SPACINGS, f"must be one of: {', '.join(SPACINGS)}"))]] = None
     unit: Optional[Annotated[Any, AfterValidator(_unit_name)]] = None
-    values: Optional[Annotated[Any, AfterValidator(_rule(
-        _non_empty(list), "must be a non-empty list"))]] = None
+    values: Optional[Annotated[Any, AfterValidator(_rule(_axis_list, AXIS_LIST))]] = None
 
     @model_validator(mode="after")
     def _values_or_range(self):
@@ -296,10 +314,10 @@ def _axis(name, spec, path, scene, problems):
         if raw is None:
             return None
         values = [f"{v!r} {unit}" if unit and _number(v) else v for v in raw]
-    elif isinstance(spec, list) and spec:
+    elif _axis_list(spec):
         values, unit = list(spec), ""
     else:
-        problems.append(Problem(path, spec, "must be a non-empty list of values or a mapping "
+        problems.append(Problem(path, spec, f"{AXIS_LIST}, or a mapping "
                                             "{start, stop, num, spacing, unit}"))
         return None
     before = len(problems)
@@ -324,10 +342,9 @@ def _axis(name, spec, path, scene, problems):
         return None
     if name in grid.COMPUTED and not np.all(result.coords > 0):
         problems.append(Problem(path, spec, "values must be positive numbers"))
-    coords = result.coords.tolist()
-    repeated = [c for i, c in enumerate(coords) if c in coords[:i]]
-    if repeated:  # a coordinate must pick one cell
-        problems.append(Problem(path, spec, f"values repeat: {repeated[0]!r}"))
+    unique, counts = np.unique(result.coords, return_counts=True)
+    if np.any(counts > 1):  # a coordinate must pick one cell
+        problems.append(Problem(path, spec, f"values repeat: {unique[counts > 1][0].item()!r}"))
     return None if len(problems) > before else result
 
 
@@ -535,10 +552,33 @@ def _blame(study, path):
     return None
 
 
-def cell_problems(study, limit=50):
-    """Problems of every cell's scene, once per axis value (or once for the base scene).
+def _checked_cells(study, seed=grid.DEFAULT_SEED):
+    """The cells whose scenes :func:`cell_problems` checks, a bounded number.
 
-    Each cell's scene is checked, resolved and packed into a kernel row, as the run will.
+    Every cell of a grid of up to ``CHECK_ALL_CELLS``.  Of a larger grid: every value of each
+    dimension with the others at their first value, ``CHECKED_PER_DIM`` values at most (both
+    ends and a seeded sample: each scene rule on a number is a range, and the values of an axis
+    written as a range lie between its ends), then ``SAMPLED_CELLS`` seeded random cells.
+    """
+    n = study.n_cells
+    if n <= CHECK_ALL_CELLS:
+        return range(n)
+    rng = np.random.default_rng(seed)
+    cells, stride = [], n
+    for size in study.shape:
+        stride //= size
+        picks = np.arange(size) if size <= CHECKED_PER_DIM else np.union1d(
+            [0, size - 1], rng.choice(size, CHECKED_PER_DIM - 2, replace=False))
+        cells += [int(p) * stride for p in picks]
+    cells += grid.sample(n, SAMPLED_CELLS, seed).tolist()
+    return list(dict.fromkeys(cells))
+
+
+def cell_problems(study, limit=50):
+    """Problems of the cells' scenes, once per axis value (or once for the base scene).
+
+    Each checked cell's scene (every cell of a small grid, a bounded choice of a large one:
+    :func:`_checked_cells`) is checked, resolved and packed into a kernel row, as the run will.
 
     Returns
     -------
@@ -547,18 +587,12 @@ def cell_problems(study, limit=50):
     """
     found, seen = [], set()
     dim_names = [d.name for d in study.dims]
-    for index in range(study.n_cells):
+    for index in _checked_cells(study):
         try:
-            raw = grid.cell_scene(study, index)
-            resolved = resolve_scene(load_scene(raw, base_dir=study.base_dir))
-            scene_row(resolved, [])
+            resolve_scene(load_scene(grid.cell_scene(study, index), base_dir=study.base_dir))
             continue
         except FileProblems as err:
             cell = err.problems
-        except (ValueError, KeyError, TypeError) as err:  # kernel packing: `path` in backticks
-            text = str(err)
-            path = text.split("`")[1] if text.count("`") >= 2 else "(scene)"
-            cell = [Problem(path, MISSING, text.replace("`", ""))]
         pos = grid.positions(study, index)
         for p in cell:
             axis = _blame(study, p.path)
@@ -596,7 +630,21 @@ def _dims(axes, groups):
 
 # --- loading ----------------------------------------------------------------------------------
 
-def load_study(source, *, text=None, output=None, check_cells=True):
+def _size_problems(study, max_cells):
+    """The problem of a grid of more cells than ``max_cells`` (none for 0 or None) or than
+    int64 cell ids can number."""
+    n = study.n_cells
+    if max_cells and n > max_cells:
+        return [Problem("grid", grid.shape_text(study),
+                        f"{n} cells, more than the limit of {max_cells}; run with "
+                        "--max-cells N to allow N cells (0: no limit)")]
+    if n > MAX_CELL_IDS:
+        return [Problem("grid", grid.shape_text(study),
+                        f"{n} cells, more than int64 cell ids can number")]
+    return []
+
+
+def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MAX_CELLS):
     """Read and check a study; every problem is reported at once.
 
     Parameters
@@ -608,7 +656,9 @@ def load_study(source, *, text=None, output=None, check_cells=True):
     output : str or Path, optional
         Overrides the study's ``output``.
     check_cells : bool
-        Also check every cell's scene (:func:`cell_problems`).
+        Also check the cells' scenes (:func:`cell_problems`).
+    max_cells : int or None
+        Refuse a grid of more cells (a problem at ``grid``); 0 or None: no limit.
 
     Returns
     -------
@@ -618,8 +668,8 @@ def load_study(source, *, text=None, output=None, check_cells=True):
     ------
     FileProblems
         Unknown keys, axes and units, bad ranges, zip groups of unequal lengths, conflicting
-        axes, a bad ``refine`` and every cell scene problem, with dotted paths and the values
-        given.
+        axes, a bad ``refine``, too many cells and every cell scene problem found, with dotted
+        paths and the values given.
     """
     if isinstance(source, Study):
         return source
@@ -673,7 +723,9 @@ def load_study(source, *, text=None, output=None, check_cells=True):
                   dims=_dims(axes, groups), output=Path(out), text=text, source=src,
                   base_dir=base_dir, description=str(raw.get("description", "")).strip(),
                   refine=refine)
-    if check_cells and scene:
+    size = _size_problems(study, max_cells)
+    problems += size
+    if check_cells and scene and not size:
         # with the axes that are well formed, so that every problem shows at once
         problems += cell_problems(study)
     if problems:

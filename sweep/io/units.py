@@ -6,6 +6,7 @@ the body for the paper's body-relative units: ``west`` (x (B/H) g, Eq. (1)), ``v
 single-shock overturning velocity, Eq. (9)) and ``alpha`` (x the slenderness angle atan(B/H)).
 Unit names are case-insensitive; ``sec`` may stand for ``s``.
 """
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -39,6 +40,7 @@ _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 _PATTERN = re.compile(rf"^\s*({_NUMBER})\s*([^\s\d.+-][^\s]*)?\s*$")
 
 
+@functools.lru_cache(maxsize=256)
 def _normalize(unit):
     """Canonical lower-case spelling: ``cm/sec2`` -> ``cm/s^2``, ``m/s/s`` -> ``m/s^2``."""
     u = unit.strip().lower().replace("**", "^").replace("sec", "s")
@@ -103,6 +105,14 @@ class Quantity:
         return self.value * float(factor)
 
 
+def _float(number):
+    """``float(number)``; inf for an integer beyond the float range (refused as not finite)."""
+    try:
+        return float(number)
+    except OverflowError:
+        return math.inf
+
+
 def parse_quantity(raw, dimension):
     """Parse a number (SI) or ``"<number> <unit>"`` into a :class:`Quantity`.
 
@@ -132,19 +142,19 @@ def parse_quantity(raw, dimension):
                              f"'{_EXAMPLES[allowed[0]]}'")
         value, unit = float(match.group(1)), _normalize(match.group(2) or "")
     else:
-        value, unit = float(raw), ""
+        value, unit = _float(raw), ""
     if not math.isfinite(value):
         raise ValueError("must be a finite number")
     if not unit:
         return Quantity(value, "", allowed[0])
     found = _FIXED[unit][0] if unit in _FIXED else _RELATIVE.get(unit)
-    expected = _either(allowed)
     if found is None:
         names = ", ".join(n for d in allowed for n in units_of(d))
-        raise ValueError(f"unknown unit '{match.group(2)}' for {expected}; use one of: {names}")
+        raise ValueError(f"unknown unit '{match.group(2)}' for {_either(allowed)}; use one of: "
+                         f"{names}")
     if found not in allowed:
         raise ValueError(f"'{match.group(2)}' is a unit of {found.replace('_', ' ')}, "
-                         f"expected {expected}")
+                         f"expected {_either(allowed)}")
     return Quantity(value, unit, found)
 
 

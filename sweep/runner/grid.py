@@ -116,6 +116,11 @@ def n_cells(study):
     return math.prod(shape(study))
 
 
+def shape_text(study):
+    """'amplitude 9 x frequency 5': the study's dimensions and sizes."""
+    return " x ".join(f"{dim.name} {dim.size}" for dim in study.dims)
+
+
 def positions(study, index):
     """Position of cell ``index`` along each dimension (C order)."""
     n = n_cells(study)
@@ -212,6 +217,12 @@ def shuffled(n, seed=DEFAULT_SEED):
     end): a shuffled order gives every rank a fair mix.
     """
     return np.random.default_rng(seed).permutation(n).astype(np.int64)
+
+
+def sample(n, k, seed=DEFAULT_SEED):
+    """``min(n, k)`` distinct cells of 0 .. n-1 in a seeded random order, drawn without
+    permuting all n (fast for any grid)."""
+    return np.random.default_rng(seed).choice(n, size=min(n, k), replace=False).astype(np.int64)
 
 
 def default_chunk_size(n, size):

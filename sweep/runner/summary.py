@@ -11,6 +11,7 @@ from kernels import codes
 
 from .. import cf
 from . import grid, refine, store
+from .grid import shape_text
 from .progress import format_seconds
 
 SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
@@ -20,11 +21,6 @@ MAX_LISTED = 20  # failed cells listed in the summary
 def say(*text, file=sys.stdout):
     """Print at once (ranks share the terminal; a buffered line would come late)."""
     print(*text, file=file, flush=True)
-
-
-def shape_text(study):
-    """'amplitude 9 x frequency 5': the study's dimensions and sizes."""
-    return " x ".join(f"{dim.name} {dim.size}" for dim in study.dims)
 
 
 def _tolerance_text(study):
@@ -60,7 +56,7 @@ def dry_run(study, size, seed, done):
     t0 = time.perf_counter()
     warm_up()
     compile_s = time.perf_counter() - t0
-    sample = grid.shuffled(n, seed)[:min(n, SAMPLE_CELLS)]
+    sample = grid.sample(n, SAMPLE_CELLS, seed)
     t0 = time.perf_counter()
     run_chunk(study, sample)
     per_cell = (time.perf_counter() - t0) / len(sample)
