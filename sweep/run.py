@@ -2,7 +2,8 @@
 dataset (DESIGN.md sections 5-7).
 
     python -m sweep.run STUDY.yaml [--dry-run] [--force] [--quiet] [--chunk-size N]
-                                   [--seed N] [-o OUTPUT.nc]
+                                   [--seed N] [-o OUTPUT.nc] [--max-cells N]
+                                   [--cell-budget S] [--rank-timeout S]
     mpiexec -n 2 python -m sweep.run STUDY.yaml
 
 The command parses its arguments, takes the communicator (``runner.mpi``) and hands over to
@@ -12,13 +13,35 @@ import argparse
 import sys
 
 from .io.problems import EXIT_BAD_INPUT
+
+EXIT_FAILED = 1
+from .io.study_schema import MAX_CELLS
 from .runner import grid, mpi
+from .runner.cells import CELL_BUDGET
 
 
 def _positive(text):
     value = int(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+def _seconds(text):
+    """A duration in seconds, >= 0 (0: no limit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number of seconds, got {text!r}") from None
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
+
+
+def _cells(text):
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0 (0: no limit), got {value}")
     return value
 
 
@@ -41,13 +64,27 @@ def parse_args(argv=None):
                         help="seed of the shuffled order of the cells (default %(default)s)")
     parser.add_argument("-o", "--output", default=None, metavar="PATH",
                         help="output file (default: the study's output)")
+    parser.add_argument("--max-cells", type=_cells, default=MAX_CELLS, metavar="N",
+                        help="refuse a grid of more cells than this (default %(default)s; "
+                             "0: no limit)")
+    parser.add_argument("--cell-budget", type=_seconds, default=CELL_BUDGET, metavar="S",
+                        help="wall-time budget of one cell in seconds: a cell still running "
+                             "then is stopped and flagged (status time_budget) and the study "
+                             "goes on (default %(default)s; 0: none)")
+    parser.add_argument("--rank-timeout", type=_seconds, default=mpi.WATCH_FLOOR,
+                        metavar="S",
+                        help="under MPI, a rank silent for longer than max(S, "
+                             f"{mpi.WATCH_FACTOR:g} x the slowest chunk so far) is taken for "
+                             "stopped or stuck and the job aborts, naming it and its cells "
+                             "(default %(default)s; 0: no watch)")
     args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)
     return args
 
 
 def main(argv=None):
-    """Entry point; returns the exit status (0 ok, 1 error, 2 bad input or refused)."""
+    """Entry point; returns the exit status (0 ok, 1 error, 2 bad input or refused, 130
+    interrupted)."""
     args = parse_args(argv)
     try:
         comm = mpi.world()
@@ -56,10 +93,12 @@ def main(argv=None):
             print(f"sweep.run: error: {err}", file=sys.stderr, flush=True)
         return EXIT_BAD_INPUT
     from .runner import launch  # the study machinery once the communicator stands
-    with mpi.abort_on_exception(comm):
-        return launch.run(comm, args)
-
-
+    try:
+        with mpi.abort_on_exception(comm):  # under MPI a failure ends the job there
+            return launch.run(comm, args)
+    except mpi.JobFailure as err:  # one process: said in words
+        print(f"sweep.run: error: {err}", file=sys.stderr, flush=True)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":

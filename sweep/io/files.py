@@ -39,3 +39,34 @@ def write_atomic(path, write):
     with replacing(path) as tmp, open(tmp, "wb") as f:
         write(f)
     return Path(path)
+
+
+def output_problem(path):
+    """Why a file cannot be written at ``path``, or None when it can (checked before any work,
+    creating nothing).
+
+    Refused are names with a NUL byte, a path that is a folder, a path below a regular file,
+    and folders that cannot be written or created (``/proc``, ``/sys``, read-only mounts).
+    """
+    text = str(path)
+    if "\x00" in text:
+        return "contains a NUL byte"
+    if not text.strip():
+        return "is empty"
+    path = Path(text).absolute()
+    if path.is_dir():
+        return "is an existing folder: give a file name such as results/x.nc"
+    folder = next(p for p in path.parents if p.exists())  # the root exists
+    if not folder.is_dir():
+        return f"{folder} is a file, not a folder"
+    if not os.access(folder, os.W_OK | os.X_OK) or _pseudo(folder):
+        return f"its folder {folder} is not writable"
+    if path.exists() and not os.access(path, os.W_OK):
+        return "exists and is not writable"
+    return None
+
+
+def _pseudo(folder):
+    """True inside the kernel's pseudo file systems, where root may "write" but nothing keeps."""
+    resolved = Path(folder).resolve()
+    return any(resolved == Path(p) or Path(p) in resolved.parents for p in ("/proc", "/sys"))

@@ -6,7 +6,9 @@ cannot break an import of ``sweep``.  Rank 0 computes too; the other ranks send 
 message per finished chunk with non-blocking sends, which it drains between its own chunks
 with ``Iprobe`` (no busy ``recv``).  Every wait is a test-and-sleep loop, so an idle rank
 does not spin.  An exception on any rank prints its traceback and calls
-``COMM_WORLD.Abort``: the whole job ends within seconds instead of hanging.
+``COMM_WORLD.Abort``: the whole job ends within seconds instead of hanging.  Rank 0 watches the
+others (:class:`Watch`): a rank silent for longer than ``max(floor, WATCH_FACTOR x the slowest
+chunk so far)`` is stopped or stuck, and the job aborts naming it and the cells it held.
 """
 import os
 import sys
@@ -21,6 +23,8 @@ from kernels import codes
 POLL = 0.02  # s between tests of a pending message or request
 FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
 TAG_PLAN, TAG_PROGRESS = 11, 12
+WATCH_FLOOR = 300.0  # s of silence always allowed to a rank (sweep.run --rank-timeout)
+WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so far is stuck
 
 # Variables by which launchers announce the number of ranks (Hydra/MPICH, Intel MPI, Open MPI,
 # PMIx, MVAPICH) and the rank (their presence alone means "started by a launcher").
@@ -31,6 +35,14 @@ RANK_VARS = ("PMI_RANK", "OMPI_COMM_WORLD_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RA
 
 class LauncherMismatch(RuntimeError):
     """A multi-rank launcher started processes that each see an MPI world of size 1."""
+
+
+class JobFailure(RuntimeError):
+    """A failure that ends the whole job and is said in words, without a traceback."""
+
+
+class RankSilent(JobFailure):
+    """A rank sent nothing for longer than the watch allows: stopped, or stuck in a scene."""
 
 
 class _DoneRequest:
@@ -162,12 +174,13 @@ def abort_on_exception(comm):
     """
     try:
         yield
-    except BaseException:
+    except BaseException as err:
         if not is_mpi(comm):
             raise
         sys.stdout.flush()
+        why = f"{err}\n" if isinstance(err, JobFailure) else traceback.format_exc()
         sys.stderr.write(f"sweep.run: rank {comm.Get_rank()} of {comm.Get_size()} failed, "
-                         f"aborting the job:\n{traceback.format_exc()}")
+                         f"aborting the job:\n{why}")
         sys.stderr.flush()
         time.sleep(FORWARD)  # the launcher forwards the traceback before Abort kills the job
         comm.Abort(1)
@@ -192,23 +205,81 @@ def _failed(result):
     return int(np.isin(result["status"], codes.FAILED_STATUSES).sum())
 
 
-def _drain(comm, progress, stats):
+class Watch:
+    """Rank 0's view of the other ranks: when each was last heard, the chunks it still holds.
+
+    Parameters
+    ----------
+    held : list of lists of ndarray
+        The chunks dealt to every rank (``grid.plan``).
+    floor : float
+        Seconds of silence always allowed; 0 or None: no watch.
+    """
+
+    def __init__(self, held, floor=WATCH_FLOOR, clock=time.monotonic):
+        self.clock = clock
+        now = clock()
+        self.floor = floor or 0.0
+        self.held = {r: {int(c[0]): c for c in chunks} for r, chunks in enumerate(held) if r}
+        self.last = {r: now for r in self.held}
+        self.slowest = 0.0
+
+    def chunk_done(self, rank, seconds, first=None):
+        """A chunk (starting at cell ``first``) took ``seconds`` on ``rank``."""
+        self.slowest = max(self.slowest, seconds)
+        self.last[rank] = self.clock()
+        self.held.get(rank, {}).pop(first, None)
+
+    def rank_done(self, rank):
+        """``rank`` finished all its chunks."""
+        self.held.pop(rank, None)
+        self.last.pop(rank, None)
+
+    def limit(self):
+        """Seconds of silence after which a rank is taken for stopped or stuck."""
+        return max(self.floor, WATCH_FACTOR * self.slowest)
+
+    def check(self):
+        """Raise :class:`RankSilent` for the first rank silent for longer than :meth:`limit`."""
+        if not self.floor:
+            return
+        now, limit = self.clock(), self.limit()
+        for rank, last in self.last.items():
+            if now - last > limit:
+                cells = np.concatenate(list(self.held[rank].values()) or [np.zeros(0, int)])
+                raise RankSilent(
+                    f"rank {rank} sent nothing for {now - last:.0f} s (the limit is "
+                    f"max({self.floor:g} s, {WATCH_FACTOR:g} x the slowest chunk so far, "
+                    f"{self.slowest:.2g} s)): it is stopped or stuck. It held {cells.size} "
+                    f"cells not yet saved (first: {np.sort(cells)[:10].tolist()}); the "
+                    "others' parts are kept: run the same command again to resume, or raise "
+                    "--rank-timeout")
+
+
+def _drain(comm, progress, stats, watch):
     """Take every waiting progress message on rank 0; returns how many ranks said done."""
     from mpi4py import MPI
 
     status, finished = MPI.Status(), 0
     while comm.Iprobe(source=MPI.ANY_SOURCE, tag=TAG_PROGRESS, status=status):
-        kind, *payload = comm.recv(source=status.Get_source(), tag=TAG_PROGRESS)
+        source = status.Get_source()
+        kind, *payload = comm.recv(source=source, tag=TAG_PROGRESS)
         if kind == "chunk":
+            n, failed, seconds, first = payload
             if progress is not None:
-                progress.update(*payload)
+                progress.update(n, failed)
+            if watch is not None:
+                watch.chunk_done(source, seconds, first)
         else:
-            stats[status.Get_source()] = tuple(payload)
+            stats[source] = tuple(payload)
             finished += 1
+            if watch is not None:
+                watch.rank_done(source)
     return finished
 
 
-def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_idle=None):
+def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_idle=None,
+         watch=None):
     """Run this rank's chunks; on rank 0, also follow every rank until all are done.
 
     Parameters
@@ -227,6 +298,8 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
     on_idle : callable, optional
         Called once on rank 0 when its own chunks are done and other ranks are still working
         (to prepare the merge in time that would be spent waiting).
+    watch : Watch, optional
+        Rank 0: the other ranks' chunks, to detect a rank that stopped answering.
 
     Returns
     -------
@@ -234,6 +307,11 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
         The chunk results kept in memory (empty with a store).
     stats : dict
         On rank 0: rank -> (cells computed, seconds busy) for every rank; else this rank's.
+
+    Raises
+    ------
+    RankSilent
+        On rank 0, when a rank stays silent for longer than the watch allows.
     """
     if run_chunk is None:
         from .cells import run_chunk
@@ -249,25 +327,32 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
             store.write_part(result)
         else:
             kept.append(result)
-        busy += time.perf_counter() - t0
+        seconds = time.perf_counter() - t0
+        busy += seconds
         n_done += len(chunk)
         if rank == 0:
             if progress is not None:
                 progress.update(len(chunk), _failed(result))
             if size > 1:
-                pending -= _drain(comm, progress, stats)
+                if watch is not None:
+                    watch.chunk_done(0, seconds)
+                pending -= _drain(comm, progress, stats, watch)
+                if watch is not None:
+                    watch.check()
         else:
-            requests.append(comm.isend(("chunk", len(chunk), _failed(result)), dest=0,
-                                       tag=TAG_PROGRESS))
+            requests.append(comm.isend(("chunk", len(chunk), _failed(result), seconds,
+                                        int(chunk[0])), dest=0, tag=TAG_PROGRESS))
             requests = [r for r in requests if not r.Test()]
     stats[rank] = (n_done, busy)
     if rank == 0:
-        pending -= _drain(comm, progress, stats) if size > 1 else 0
+        pending -= _drain(comm, progress, stats, watch) if size > 1 else 0
         if pending > 0 and on_idle is not None:
             on_idle()
         while pending > 0:
-            pending -= _drain(comm, progress, stats)
+            pending -= _drain(comm, progress, stats, watch)
             if pending > 0:
+                if watch is not None:
+                    watch.check()
                 time.sleep(POLL)
     else:
         requests.append(comm.isend(("done", n_done, busy), dest=0, tag=TAG_PROGRESS))

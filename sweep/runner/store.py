@@ -1,33 +1,41 @@
-"""Part files, resume, merge and the atomic netCDF write.
+"""Part files, resume, merge, clean-up and the atomic netCDF write.
 
 Each finished chunk becomes one part file ``part-<first cell>.npz`` in ``<output>.parts/``,
 written under a temporary name, flushed to disk and renamed (``os.replace`` is atomic): a part
 either exists whole or not at all, whatever moment a run is killed.  A part holds the ``cell``
 ids it covers, so a run resumes from whatever parts exist with any chunk size and rank count.
-``manifest.json`` records a fingerprint of the study (base scene, axes, refine settings, kernel
-sources), so that parts of another version of a study are never merged.  A refine study keeps
-the parts of each round in a folder of its own (``round-000/``, ``round-001/``, ...).  The
-dataset is written to a temporary file in the output's folder and renamed, so a reader never
-sees half a file.
+``manifest.json`` records the fingerprint of the study's inputs (``runner.fingerprint``: the
+study, the content of its record files, the program) and every part carries it too: parts of
+other inputs are refused with what changed, and a part that disagrees with the manifest stops
+the merge, never a mixed dataset.  A refine study keeps the parts of each round in a folder of
+its own (``round-000/``, ``round-001/``, ...).  The dataset is written to a temporary file in
+the output's folder and renamed, so a reader never sees half a file; it carries the
+fingerprint as its ``input_fingerprint`` attribute, so that a run killed after writing it
+finishes its clean-up when started again.  A parts folder is removed by renaming it first
+(``.<name>.parts.<pid>.trash``): a kill during the removal leaves only such a folder, which
+the next start deletes with the temporary files of killed writes.
 """
-import hashlib
 import json
+import os
 import shutil
 import zipfile
 from pathlib import Path
 
 import numpy as np
 
-from .. import __version__, cf
+from .. import cf
 from ..io.files import TMP_MARK, replacing, write_atomic
-from .cells import kernel_digest
+from . import fingerprint
+from .mpi import JobFailure
 
 MANIFEST = "manifest.json"
 PART_GLOB = "part-*.npz"
+TRASH_MARK = ".trash"
+FINGERPRINT_ATTR = "input_fingerprint"  # global attribute of a dataset written by a run
 
 
-class StoreError(Exception):
-    """Output or part files that a run cannot use (existing result, stale parts)."""
+class StoreError(JobFailure):
+    """Output or part files that a run cannot use (existing result, stale or foreign parts)."""
 
 
 def parts_dir(output):
@@ -41,17 +49,30 @@ def round_dir(directory, index):
     return Path(directory) / f"round-{index:03d}"
 
 
-def fingerprint(study):
-    """Hash of what decides a study's results: base scene, axes and their values, refine
-    settings, kernel."""
-    content = {"scene": study.scene,
-               "dims": [[dim.name, [[a.name, list(a.values)] for a in dim.axes]]
-                        for dim in study.dims],
-               "version": __version__, "kernel": kernel_digest()}
-    if study.refine is not None:
-        content["refine"] = [study.refine.axis, study.refine.tolerance]
-    text = json.dumps(content, sort_keys=True, default=str)
-    return hashlib.sha256(text.encode()).hexdigest()
+def remove_tree(directory):
+    """Delete a folder as one step: renamed aside first (atomic), then deleted."""
+    directory = Path(directory)
+    if not directory.exists():
+        return
+    trash = directory.with_name(f".{directory.name}.{os.getpid()}{TRASH_MARK}")
+    os.replace(directory, trash)
+    shutil.rmtree(trash, ignore_errors=True)
+
+
+def clean_leftovers(output):
+    """Delete what killed runs left beside ``output``: temporary files of interrupted writes
+    and parts folders caught while being removed.  Only the holder of the output's lock may
+    call this.  Returns the names removed."""
+    output = Path(output)
+    removed = []
+    for pattern in (f".{output.name}.*{TMP_MARK}", f".{parts_dir(output).name}.*{TRASH_MARK}"):
+        for path in output.parent.glob(pattern):
+            if path.is_dir():
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                path.unlink(missing_ok=True)
+            removed.append(path.name)
+    return removed
 
 
 class PartStore:
@@ -61,42 +82,64 @@ class PartStore:
     ----------
     directory : str or Path
         The parts folder (:func:`parts_dir` of the output).
+    stamp : str, optional
+        The fingerprint written into each part (:meth:`prepare` sets it on rank 0; other
+        ranks get it with their plan).
     """
 
-    def __init__(self, directory):
+    def __init__(self, directory, stamp=None):
         self.directory = Path(directory)
+        self.stamp = stamp
 
     def prepare(self, study, discard=False):
         """Create the folder or check that its parts belong to this study (rank 0 only).
 
-        Leftover temporary files of a killed run are removed.  Parts of another study (another
-        fingerprint) raise :class:`StoreError`, or are deleted when ``discard`` is true.
+        Leftover temporary files of a killed run are removed.  Parts of other inputs (another
+        fingerprint: study, record file content or program changed) raise :class:`StoreError`
+        saying what changed, or are deleted when ``discard`` is true.  Returns the fingerprint.
         """
+        if self.directory.exists() and not self.directory.is_dir():
+            raise StoreError(f"{self.directory} (the folder of the part files) is taken by a "
+                             "file; move or delete it")
         manifest = self.directory / MANIFEST
-        want = {"fingerprint": fingerprint(study), "n_cells": study.n_cells,
+        parts = fingerprint.components(study)
+        self.stamp = fingerprint.combined(parts)
+        want = {"fingerprint": self.stamp, "components": parts, "n_cells": study.n_cells,
                 "study": study.name}
+        stale = None
         if manifest.exists():
             try:
                 have = json.loads(manifest.read_text())
             except (OSError, ValueError):
                 have = {}
-            if have.get("fingerprint") != want["fingerprint"]:
-                if not discard:
-                    raise StoreError(
-                        f"{self.directory} holds the parts of a different version of this "
-                        "study (its scene, grid or the kernel changed); run with --force to "
-                        "discard them, or delete the folder")
-                shutil.rmtree(self.directory)
+            have = have if isinstance(have, dict) else {}
+            if have.get("fingerprint") != self.stamp:
+                said = fingerprint.changes(have.get("components") or {}, parts)
+                stale = (f"{self.directory} holds the parts of other inputs "
+                         f"({'; '.join(said) or 'an older version of the program'})")
+            elif foreign := [p.name for p in self.parts() if _stamp_of(p) != self.stamp]:
+                stale = (f"{self.directory} holds {len(foreign)} part files of other inputs "
+                         f"than its {MANIFEST} states (first: {foreign[0]})")
         elif self.directory.exists() and any(self.directory.glob(PART_GLOB)):
-            if not discard:
-                raise StoreError(f"{self.directory} holds part files without a manifest; "
-                                 "run with --force to discard them, or delete the folder")
-            shutil.rmtree(self.directory)
+            stale = f"{self.directory} holds part files without a manifest"
+        if stale and not discard:
+            raise StoreError(f"{stale}; run with --force to discard them and compute every "
+                             "cell again, or delete the folder")
+        if stale:
+            remove_tree(self.directory)
         self.directory.mkdir(parents=True, exist_ok=True)
         for tmp in self.directory.glob(f".*{TMP_MARK}"):
             tmp.unlink(missing_ok=True)
         if not manifest.exists():
             write_atomic(manifest, lambda f: f.write(json.dumps(want, indent=1).encode()))
+        return self.stamp
+
+    def manifest_stamp(self):
+        """The fingerprint its manifest states, or None."""
+        try:
+            return json.loads((self.directory / MANIFEST).read_text()).get("fingerprint")
+        except (OSError, ValueError, AttributeError):
+            return None
 
     def parts(self):
         """Paths of the finished part files, sorted."""
@@ -113,28 +156,48 @@ class PartStore:
             try:
                 with np.load(path, allow_pickle=False) as npz:
                     done.append(npz["cell"])
-            except (OSError, ValueError, KeyError, zipfile.BadZipFile):
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
                 path.unlink(missing_ok=True)
         return np.unique(np.concatenate(done)) if done else np.zeros(0, dtype=np.int64)
 
     def write_part(self, arrays):
-        """Write one chunk's arrays (``cells.run_chunk``) as a part file, atomically."""
+        """Write one chunk's arrays (``cells.run_chunk``) as a part file, atomically, with the
+        fingerprint of the run's inputs."""
         name = f"part-{int(np.min(arrays['cell'])):09d}.npz"
-        write_atomic(self.directory / name, lambda f: np.savez(f, **arrays))
+        stamped = {**arrays, "fingerprint": np.array(self.stamp or "")}
+        write_atomic(self.directory / name, lambda f: np.savez(f, **stamped))
         return self.directory / name
 
-    @staticmethod
-    def _load(path):
+    def _load(self, path, n_cells):
+        """A part's arrays, checked against the manifest: its fingerprint and its cell ids."""
         with np.load(path, allow_pickle=False) as npz:
-            return {key: npz[key] for key in npz.files}
+            part = {key: npz[key] for key in npz.files}
+        if str(part.get("fingerprint", "")) != self.stamp:
+            raise StoreError(f"{path} was computed from other inputs than {MANIFEST} states; "
+                             "nothing was merged. Run again with --force to compute every "
+                             "cell again")
+        cell = part["cell"]
+        if cell.size and (cell.min() < 0 or cell.max() >= n_cells):
+            raise StoreError(f"{path} holds cells outside 0 .. {n_cells - 1}; nothing was merged")
+        return part
 
     def merge(self, n_cells):
-        """Every cell's arrays from the part files, in cell order (see :func:`merge`)."""
-        return merge((self._load(p) for p in self.parts()), n_cells)
+        """Every cell's arrays from the part files, in cell order (see :func:`merge`); every
+        part is checked against the manifest first."""
+        return merge([self._load(p, n_cells) for p in self.parts()], n_cells)
 
     def remove(self):
         """Delete the parts folder (after the dataset is written)."""
-        shutil.rmtree(self.directory, ignore_errors=True)
+        remove_tree(self.directory)
+
+
+def _stamp_of(path):
+    """The fingerprint a part file carries ('' when none or unreadable)."""
+    try:
+        with np.load(path, allow_pickle=False) as npz:
+            return str(npz["fingerprint"]) if "fingerprint" in npz.files else ""
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+        return ""
 
 
 def merge(parts, n_cells):
@@ -169,8 +232,21 @@ def check_output(path, force):
     path = Path(path)
     if path.exists() and not force:
         raise StoreError(f"{path} exists; run with --force to overwrite it")
-    if path.exists() and path.is_dir():
-        raise StoreError(f"{path} is a folder, not a file")
+
+
+def finished_earlier(path, stamp):
+    """True when ``path`` is the dataset of a run of these very inputs (``stamp``): a run
+    killed after writing it, before its clean-up ended."""
+    path = Path(path)
+    if not path.is_file():
+        return False
+    try:
+        import netCDF4
+
+        with netCDF4.Dataset(path) as nc:
+            return getattr(nc, FINGERPRINT_ATTR, None) == stamp
+    except (OSError, RuntimeError, ValueError):
+        return False
 
 
 def write_netcdf(ds, path):

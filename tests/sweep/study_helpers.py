@@ -13,7 +13,7 @@ SCENE = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 0.8, "e_x": -0.8, "e_y"
                                        "frequency": 4.0}},
          "solver": {"t_end": 2.0}}
 # time and coordinate attributes that differ between two runs of the same study
-RUN_ATTRS = ("history", "date_created")
+RUN_ATTRS = ("history", "date_created", "input_fingerprint")
 
 
 def make_study(grid, **extra):

@@ -1,6 +1,7 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
 any chunk size; abort on an exception; resume of a terminated job with another rank count;
-the launcher/library mismatch message."""
+Ctrl-C; a stopped rank detected and named; the launcher/library mismatch message."""
+import os
 import shutil
 import signal
 import subprocess
@@ -88,3 +89,73 @@ def test_launcher_library_mismatch(tmp_path, small_study):
     assert "launcher/library mismatch" in done.stderr and "OMPI_COMM_WORLD_SIZE=2" in done.stderr
     assert "Traceback" not in done.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]
+
+
+def _slow_job(tmp_path, *extra):
+    raw = make_study({"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
+                      "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}, output="r.nc")
+    raw["scene"]["solver"]["t_end"] = 20.0  # ~3 s on 2 ranks: stopped long before its end
+    study = write_study(tmp_path / "slow.yaml", raw)
+    job = subprocess.Popen([MPIEXEC, "-n", "2", PY, "-m", "sweep.run", str(study),
+                            "--chunk-size", "2", *extra], cwd=tmp_path, env=cli_env(),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return study, job, store.parts_dir(tmp_path / "r.nc")
+
+
+def _wait_for_parts(job, parts, n, timeout=120):
+    end = time.monotonic() + timeout
+    while len(list(parts.glob("part-*.npz"))) < n:
+        assert job.poll() is None and time.monotonic() < end, "the job ended too early"
+        time.sleep(0.005)
+
+
+def _rank_pid(rank):
+    """The pid of a rank of the running job, from its launcher's PMI_RANK."""
+    for proc in Path("/proc").iterdir():
+        try:
+            env = (proc / "environ").read_bytes().split(b"\0")
+            cmd = (proc / "cmdline").read_bytes()
+        except OSError:
+            continue
+        if b"sweep.run" in cmd and f"PMI_RANK={rank}".encode() in env:
+            return int(proc.name)
+    raise AssertionError(f"no process of rank {rank}")
+
+
+def test_ctrl_c_under_mpiexec_saves_and_resumes(tmp_path):
+    study, job, parts = _slow_job(tmp_path)
+    _wait_for_parts(job, parts, 6)
+    job.send_signal(signal.SIGINT)  # what Ctrl-C in the terminal does to mpiexec
+    _, err = job.communicate(timeout=60)
+    assert job.returncode == 130 and "Traceback" not in err, err
+    lines = [line for line in err.splitlines() if "sweep.run: interrupted" in line]
+    assert len(lines) == 1 and "cells are saved in r.nc.parts" in lines[0], err
+    saved = 2 * len(list(parts.glob("part-*.npz")))
+    assert f"interrupted: {saved} of 240 cells" in lines[0]
+    resumed = cli([study], cwd=tmp_path)
+    assert resumed.returncode == 0 and f"resuming: {saved} cells" in resumed.stderr
+    reference = cli([study, "-o", "ref.nc"], cwd=tmp_path)
+    assert _open(tmp_path / "r.nc").identical(_open(tmp_path / "ref.nc"))
+
+
+def test_a_stopped_rank_is_detected_and_named(tmp_path):
+    study, job, parts = _slow_job(tmp_path, "--rank-timeout", "2")
+    _wait_for_parts(job, parts, 4)
+    rank1 = _rank_pid(1)
+    os.kill(rank1, signal.SIGSTOP)
+    stopped = time.monotonic()
+    try:
+        _, err = job.communicate(timeout=90)
+    finally:
+        try:
+            os.kill(rank1, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    detected = time.monotonic() - stopped
+    assert job.returncode != 0 and "rank 1 sent nothing for" in err, err
+    assert "it is stopped or stuck" in err and "cells not yet saved" in err
+    assert "Traceback" not in err and not (tmp_path / "r.nc").exists()
+    assert detected < 30, detected
+    print(f"stopped rank detected after {detected:.1f} s")
+    resumed = cli([study], cwd=tmp_path)  # the parts of both ranks are kept
+    assert resumed.returncode == 0 and "resuming" in resumed.stderr, resumed.stderr

@@ -10,7 +10,9 @@ from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write
 
 import sweep
 from kernels import codes
+from sweep.io.study_schema import load_study
 from sweep.runner import store
+from sweep.runner.cells import run_chunk
 
 
 def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):
@@ -92,3 +94,93 @@ def test_sigkill_then_resume_gives_the_same_dataset(tmp_path):
     assert reference.returncode == 0, reference.stderr
     a, b = xr.open_dataset(tmp_path / "r.nc"), xr.open_dataset(tmp_path / "ref.nc")
     assert without_run_attrs(a).identical(without_run_attrs(b))
+
+
+def _wait_for_parts(process, parts_dir, n_parts, timeout=120.0):
+    end = time.monotonic() + timeout
+    while len(list(parts_dir.glob("part-*.npz"))) < n_parts:
+        assert process.poll() is None and time.monotonic() < end, "the run ended too early"
+        time.sleep(0.005)
+
+
+def test_ctrl_c_says_what_is_saved_and_the_resume_is_exact(tmp_path):
+    raw = make_study(SLOW, output="r.nc")
+    raw["scene"]["solver"]["t_end"] = 12.0
+    study = write_study(tmp_path / "slow.yaml", raw)
+    process = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "2"],
+                               cwd=tmp_path, env=cli_env(), stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    parts_dir = store.parts_dir(tmp_path / "r.nc")
+    _wait_for_parts(process, parts_dir, 5)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130 and "Traceback" not in err, err
+    saved = 2 * len(list(parts_dir.glob("part-*.npz")))
+    assert f"interrupted: {saved} of 240 cells are saved in {parts_dir.name}" in err
+    assert "run the same command again to resume" in err
+    resumed = cli([study], cwd=tmp_path, timeout=240)
+    assert resumed.returncode == 0 and f"resuming: {saved} cells" in resumed.stderr
+    reference = cli([study, "-o", "ref.nc"], cwd=tmp_path, timeout=240)
+    a, b = xr.open_dataset(tmp_path / "r.nc"), xr.open_dataset(tmp_path / "ref.nc")
+    assert without_run_attrs(a).identical(without_run_attrs(b))
+
+
+def test_leftovers_of_killed_writes_and_removals_are_cleaned(tmp_path, small_study):
+    study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
+    tmp = tmp_path / ".r.nc.4242.tmp"           # a final write killed half way
+    tmp.write_bytes(b"CDF\x01 half a file")
+    trash = tmp_path / ".r.nc.parts.4242.trash"  # a removal of the parts killed half way
+    (trash / "round-000").mkdir(parents=True)
+    (trash / "part-000000003.npz").write_bytes(b"")
+    done = cli([study], cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert ".r.nc.4242.tmp" in done.stderr and ".r.nc.parts.4242.trash" in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc", "s.yaml"]
+
+
+def test_a_run_killed_after_its_dataset_was_written_finishes_its_clean_up(tmp_path,
+                                                                         small_study):
+    study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
+    assert cli([study], cwd=tmp_path).returncode == 0
+    stamp = (tmp_path / "r.nc").stat().st_mtime_ns
+    # the state a kill between the dataset's rename and the parts' removal leaves
+    parts = store.PartStore(store.parts_dir(tmp_path / "r.nc"))
+    parts.prepare(load_study(study))
+    parts.write_part(run_chunk(load_study(study), np.arange(4)))
+    again = cli([study], cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert "already complete; removed the part files" in again.stderr
+    assert not parts.directory.exists() and (tmp_path / "r.nc").stat().st_mtime_ns == stamp
+    # parts of other inputs beside the dataset are no such leftover: refused as before
+    parts.prepare(load_study(dict(small_study, grid={"amplitude": [0.5, 1.0]})))
+    refused = cli([study], cwd=tmp_path)
+    assert refused.returncode == 2 and "exists; run with --force" in refused.stderr
+    assert parts.directory.exists()
+
+
+@pytest.mark.parametrize("output, reason", [
+    ("README/x.nc", "README is a file, not a folder"),
+    ("/proc/x.nc", "is not writable"),
+    ("sub", "is an existing folder"),
+    ("a\x00b.nc", None),  # a NUL byte (escaped in the YAML file; no command line carries one)
+])
+def test_unusable_outputs_are_refused_before_any_work(tmp_path, small_study, output, reason):
+    (tmp_path / "README").write_text("a file")
+    (tmp_path / "sub").mkdir()
+    study = write_study(tmp_path / "s.yaml", dict(small_study, output=output))
+    done = cli([study], cwd=tmp_path, timeout=60)
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert "output:" in done.stderr
+    if reason:
+        assert reason in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["README", "s.yaml", "sub"]
+    assert list((tmp_path / "sub").iterdir()) == []
+
+
+def test_a_parts_folder_taken_by_a_file_is_refused(tmp_path, small_study):
+    study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
+    (tmp_path / "r.nc.parts").write_text("not a folder")
+    done = cli([study], cwd=tmp_path, timeout=60)
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert "r.nc.parts (the folder of the part files) is taken by a file" in done.stderr
+    assert not (tmp_path / "r.nc").exists()

@@ -75,7 +75,7 @@ def test_prepare_resume_and_stale_parts(study, whole, tmp_path):
     np.testing.assert_array_equal(parts.done_cells(), np.arange(3, 9))
     assert [p.name for p in parts.directory.iterdir() if p.name.startswith(".")] == []
     other = load_study(make_study({"amplitude": {"values": [0.5, 1.5], "unit": "west"}}))
-    with pytest.raises(store.StoreError, match="different version"):
+    with pytest.raises(store.StoreError, match="parts of other inputs"):
         parts.prepare(other)
     parts.prepare(other, discard=True)
     assert parts.parts() == []
