@@ -26,6 +26,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import codes
+from .watchdog import Watchdog, control
 
 DEFAULTS = {
     "body": {"i_g": None},
@@ -39,6 +40,8 @@ DEFAULTS = {
     "ground": {"start": 0.0, "duration": None, "phase": 0.0, "law": "log",
                "hold": "acceleration", "scale": 1.0},
 }
+
+MAX_LOG = 100_000  # impacts kept in a scene's log by default (all are counted)
 
 _KINDS = {"none": codes.G_NONE, "sine": codes.G_SINE, "sweep": codes.G_SWEEP,
           "record": codes.G_RECORD}
@@ -182,19 +185,34 @@ def record_buffer(records):
 
 SceneResult = namedtuple("SceneResult", [
     "status", "message", "overturned", "t_overturn", "overturn_direction", "impact_times",
-    "omega_after", "impact_slipped", "max_abs_theta", "t_rest", "mode_time", "max_slip",
-    "max_lift", "steps", "events", "energy_clamps", "t_final", "f_at_overturn",
-    "a_at_overturn", "v_at_overturn", "cpu_s", "history"])
+    "omega_after", "impact_slipped", "impact_count", "impact_log_truncated", "max_abs_theta",
+    "t_rest", "mode_time", "max_slip", "max_lift", "steps", "events", "energy_clamps",
+    "t_final", "f_at_overturn", "a_at_overturn", "v_at_overturn", "cpu_s", "history"])
 SceneResult.__doc__ = """Result of one scene: the JSON contract of DESIGN.md section 4 plus
-extras.  ``history`` is None or a dict of arrays named by ``codes.HISTORY_NAMES``."""
+extras.  ``impact_times``, ``omega_after`` and ``impact_slipped`` hold the first ``max_log``
+impacts of ``impact_count`` (``impact_log_truncated`` when fewer); ``history`` is None or a
+dict of arrays named by ``codes.HISTORY_NAMES``."""
 
 
 def _nan_to_none(x):
     return None if not np.isfinite(x) else float(x)
 
 
-def run_scene(scene, history=False, max_log=100_000):
-    """Simulate one resolved scene (dict in SI units) and return a ``SceneResult``."""
+def _message(status, impacts, logged, clamps):
+    """The status message, with what was cut (the impact log) or changed (restitution)."""
+    text = codes.STATUS_MESSAGES[status]
+    if logged < impacts:
+        text += f"; impact log truncated at {logged} of {impacts} impacts"
+    if impacts and clamps == impacts:
+        text += (f"; all {impacts} impact{'s' if impacts != 1 else ''} had their "
+                 "restitution clamped to gain no energy (check e_x, e_y)")
+    return text
+
+
+def run_scene(scene, history=False, max_log=MAX_LOG):
+    """Simulate one resolved scene (dict in SI units) and return a ``SceneResult``.
+
+    The impact log keeps the first ``max_log`` impacts; the kernel counts them all."""
     from .driver import run_scene as _run_scene
     records = []
     row = scene_row(scene, records)
@@ -204,24 +222,26 @@ def run_scene(scene, history=False, max_log=100_000):
     n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
     t0 = time.process_time()
-    n_log, n_h = _run_scene(as_records(row)[0], rec, res, log, hist)
+    n_log, n_h = _run_scene(as_records(row)[0], rec, res, log, hist, control(cell=0))
     cpu = time.process_time() - t0
     status = int(res[codes.R_STATUS])
     overturned = status == codes.OVERTURNED
+    impacts, clamps = int(res[codes.R_IMPACTS]), int(res[codes.R_ENERGY_CLAMPS])
     return SceneResult(
-        status=codes.STATUS_NAMES[status], message=codes.STATUS_MESSAGES[status],
+        status=codes.STATUS_NAMES[status], message=_message(status, impacts, n_log, clamps),
         overturned=overturned, t_overturn=_nan_to_none(res[codes.R_T_OVERTURN]),
         overturn_direction=int(res[codes.R_DIRECTION]) if overturned else None,
         impact_times=log[:n_log, codes.LOG_T].tolist(),
         omega_after=log[:n_log, codes.LOG_OMEGA].tolist(),
         impact_slipped=[bool(int(f) & codes.SLIPPED) for f in log[:n_log, codes.LOG_FLAGS]],
+        impact_count=impacts, impact_log_truncated=n_log < impacts,
         max_abs_theta=float(res[codes.R_MAX_ABS_THETA]),
         t_rest=_nan_to_none(res[codes.R_T_REST]),
         mode_time={name: float(res[codes.R_MODE_TIME + m])
                    for m, name in enumerate(codes.MODE_NAMES)},
         max_slip=float(res[codes.R_MAX_SLIP]), max_lift=float(res[codes.R_MAX_LIFT]),
         steps=int(res[codes.R_STEPS]), events=int(res[codes.R_EVENTS]),
-        energy_clamps=int(res[codes.R_ENERGY_CLAMPS]), t_final=float(res[codes.R_T_END]),
+        energy_clamps=clamps, t_final=float(res[codes.R_T_END]),
         f_at_overturn=_nan_to_none(res[codes.R_F_AT_OVERTURN]),
         a_at_overturn=_nan_to_none(res[codes.R_A_AT_OVERTURN]),
         v_at_overturn=_nan_to_none(res[codes.R_V_AT_OVERTURN]),
@@ -230,13 +250,32 @@ def run_scene(scene, history=False, max_log=100_000):
         if history else None)
 
 
-def run_cells(rows, rec):
-    """Run a chunk of scene rows (shape (n, N_PAR)) in one compiled call: (n, N_RES)."""
+def run_cells(rows, rec, budget=None):
+    """Run a chunk of scene rows (shape (n, N_PAR)) in one compiled call: (n, N_RES).
+
+    ``budget``: seconds of wall time a cell may run before a watchdog thread stops it with
+    status ``TIME_BUDGET`` (the next cell then starts); None or 0: no limit.
+    """
     from .driver import run_cells as _run_cells
     rows = np.ascontiguousarray(rows, dtype=np.float64)
     if rows.ndim != 2 or rows.shape[1] != codes.N_PAR:
         raise ValueError(f"`rows` must have shape (n, {codes.N_PAR}), got {rows.shape}")
+    if budget is not None and not budget >= 0:
+        raise ValueError(f"`budget` must be None or >= 0 seconds, got {budget!r}")
     rec = np.ascontiguousarray(rec, dtype=np.float64)
     results = np.zeros((rows.shape[0], codes.N_RES))
-    _run_cells(as_records(rows), rec, results)
+    ctl = control()
+    with Watchdog(ctl, budget):
+        _run_cells(as_records(rows), rec, results, ctl)
+    return results
+
+
+def not_run(n, status=codes.INVALID_SCENE):
+    """Result rows (n, N_RES) of scenes that never ran: ``status``, no impacts, steps or
+    events, no overturning direction, NaN for every other result."""
+    results = np.full((n, codes.N_RES), np.nan)
+    results[:, codes.R_STATUS] = status
+    for index in (codes.R_DIRECTION, codes.R_IMPACTS, codes.R_STEPS, codes.R_EVENTS,
+                  codes.R_ENERGY_CLAMPS):
+        results[:, index] = 0.0
     return results

@@ -21,16 +21,27 @@ CTX_S, CTX_SIGMA, CTX_X = range(3)
 N_CTX = 3
 
 # --- end status of a scene ------------------------------------------------------------------
-OK, OVERTURNED, BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE = range(5)
-STATUS_NAMES = ("ok", "overturned", "budget_exhausted", "non_finite", "painleve")
+# TIME_BUDGET: a watchdog stopped the scene (``api.run_cells(..., budget=)``); INVALID_SCENE:
+# the cell's scene could not be built, so it never ran (set in Python, not by the kernel).
+OK, OVERTURNED, BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE, TIME_BUDGET, INVALID_SCENE = range(7)
+STATUS_NAMES = ("ok", "overturned", "budget_exhausted", "non_finite", "painleve",
+                "time_budget", "invalid_scene")
 STATUS_MESSAGES = (
     "the scene ran to its end time or to final rest",
     "the body overturned (|theta| reached the overturning angle)",
     "the step or event budget was used up before the end time",
     "a non-finite state was met",
     "Painleve paradox: the contact problem has no consistent solution (D <= 0)",
+    "stopped after the per-cell wall-time budget",
+    "the cell's scene could not be built (its problem is reported as a warning)",
 )
-FAILED_STATUSES = (BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE)
+FAILED_STATUSES = (BUDGET_EXHAUSTED, NON_FINITE, PAINLEVE, TIME_BUDGET, INVALID_SCENE)
+
+# --- the control array shared by ``driver.run_cells`` and a watchdog thread (int64) --------
+# CTL_CELL: index of the cell now running (written by the kernel; the chunk's length once
+# done); CTL_STOP: index of a cell to stop (written by the watchdog; -1 stops none).
+CTL_CELL, CTL_STOP = range(2)
+N_CTL = 2
 
 # --- outcome of a cell in a study -----------------------------------------------------------
 FAILED, NO_ROCKING, ROCKED, OVERTURN = -1, 0, 1, 2

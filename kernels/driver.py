@@ -11,19 +11,21 @@ Rest integrates nothing: ``rest_skipping.rest_exit`` skips to the next instant a
 floor can move the body.  A step never crosses a break of the floor motion; after one, the
 mode's guards are tested again with the new floor values.  The loop ends at t_end, at
 overturning, at final rest once the floor is still for good, or with a failure status
-(step/event budget, non-finite state, Painleve).
+(step/event budget, non-finite state, Painleve, or a stop request of a watchdog thread
+read from the control array ``ctl`` once per pass of the loop: compiled code cannot be
+interrupted by a signal, so a thread that wants it to stop writes a flag that it reads).
 """
 import math
 
 import numpy as np
 
 from ._jit import jit
-from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTX_S, CTX_SIGMA, IOMEGA, ITHETA,
-                    LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG, N_MODES, N_STATE, NON_FINITE,
-                    OK, OVERTURNED, PAINLEVE, R_A_AT_OVERTURN, R_DIRECTION, R_ENERGY_CLAMPS,
-                    R_EVENTS, R_F_AT_OVERTURN, R_IMPACTS, R_MAX_ABS_THETA, R_MAX_LIFT,
-                    R_MAX_SLIP, R_MODE_TIME, R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN,
-                    R_T_REST, R_V_AT_OVERTURN, REST)
+from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTL_CELL, CTL_STOP, CTX_S,
+                    CTX_SIGMA, IOMEGA, ITHETA, LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG,
+                    N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, R_A_AT_OVERTURN,
+                    R_DIRECTION, R_ENERGY_CLAMPS, R_EVENTS, R_F_AT_OVERTURN, R_IMPACTS,
+                    R_MAX_ABS_THETA, R_MAX_LIFT, R_MAX_SLIP, R_MODE_TIME, R_STATUS, R_STEPS,
+                    R_T_END, R_T_OVERTURN, R_T_REST, R_V_AT_OVERTURN, REST, TIME_BUDGET)
 from .event_search import first_event, polish
 from .events import event_values, n_events
 from .extremes import MAX_LIFT, MAX_SLIP, MAX_THETA, observe, observe_turns
@@ -87,7 +89,7 @@ def _report(res, status, t, t_rest, mode, counts, scene, work):
 
 
 @jit
-def run_scene(row, rec, res, log, hist):
+def run_scene(row, rec, res, log, hist, ctl):
     """Simulate one scene.
 
     Parameters
@@ -102,6 +104,9 @@ def run_scene(row, rec, res, log, hist):
         Filled with (t, omega after, impact flags) of the first m impacts (``LOG_*``).
     hist : ndarray, shape (k, N_HIST)
         Filled with the state every ``P_DT_OUT`` seconds (first k samples).
+    ctl : ndarray of int64, shape (N_CTL,)
+        The control array (``codes.CTL_*``): the scene ends with status ``TIME_BUDGET`` once
+        ``ctl[CTL_STOP]`` equals ``ctl[CTL_CELL]`` as it was at the start.
 
     Returns
     -------
@@ -136,6 +141,7 @@ def run_scene(row, rec, res, log, hist):
     events = 0
     steps = 0
     clamps = 0
+    cell = ctl[CTL_CELL]              # a stop request names the cell, never a later one
     dt_next = solver.dt if not adaptive else min(solver.max_step, FIRST_STEP)
     mode, s, sigma = initial_mode(q, scene, rec)
     if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
@@ -144,6 +150,9 @@ def run_scene(row, rec, res, log, hist):
     observe(mode, q, body, extremes)
 
     while status == OK and t < t_end:
+        if ctl[CTL_STOP] == cell:
+            status = TIME_BUDGET
+            break
         n = n_dof(mode)
         if mode == REST:
             if t >= t_still:
@@ -264,10 +273,13 @@ def run_scene(row, rec, res, log, hist):
 
 
 @jit
-def run_cells(rows, rec, results):
+def run_cells(rows, rec, results, ctl):
     """Run every scene row of ``rows`` (n records of ``codes.SCENE_DTYPE``) into
-    ``results`` (n, N_RES)."""
+    ``results`` (n, N_RES), writing the index of the running cell to ``ctl[CTL_CELL]`` (n
+    once done) for a watchdog thread, which may stop it (see ``run_scene``)."""
     log = np.zeros((0, N_LOG))
     hist = np.zeros((0, N_HIST))
     for i in range(rows.shape[0]):
-        run_scene(rows[i], rec, results[i], log, hist)
+        ctl[CTL_CELL] = i
+        run_scene(rows[i], rec, results[i], log, hist, ctl)
+    ctl[CTL_CELL] = rows.shape[0]
