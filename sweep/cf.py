@@ -59,6 +59,11 @@ VARIABLES = {
     "t_rest": Variable("float64", "s", "time of coming to final rest",
                        comment="NaN if the body did not come to final rest"),
     "steps": Variable("int32", "1", "integration steps taken"),
+    "energy_clamps": Variable("int32", "1", "impacts whose restitution was clamped to gain "
+                                            "no energy",
+                              comment="a plastic law replaced the impact law, which would "
+                                      "have gained energy (PHYSICS.md section 3); every "
+                                      "impact clamped: check e_x, e_y"),
     "f_at_overturn": Variable("float64", "Hz", "floor frequency at overturning",
                               comment="instantaneous frequency of a sweep or sine; "
                                       "NaN if the body did not overturn"),
@@ -310,7 +315,7 @@ def refine_dataset(study, arrays, *, rounds, history=None):
     return xr.Dataset(data, coords=_coords(study), attrs=attrs)
 
 
-def history_dataset(history, scene, source=None):
+def history_dataset(history, scene, source=None, result=None):
     """The time history of one scene: a Dataset with dimension ``time``.
 
     Parameters
@@ -321,6 +326,10 @@ def history_dataset(history, scene, source=None):
         The resolved scene (its body's ``B`` and ``H`` become attributes).
     source : str, optional
         The scene file, for the ``source`` attribute.
+    result : SceneResult, optional
+        The scene's result: its ``impact_count``, ``impact_log_truncated`` (1 when the
+        result's impact log holds fewer impacts, else 0) and ``energy_clamps`` become
+        attributes.
     """
     import xarray as xr
 
@@ -331,6 +340,10 @@ def history_dataset(history, scene, source=None):
              "B": scene["body"]["B"], "H": scene["body"]["H"]}
     if source is not None:
         attrs["source"] = source
+    if result is not None:
+        attrs.update(impact_count=result.impact_count,
+                     impact_log_truncated=int(result.impact_log_truncated),
+                     energy_clamps=result.energy_clamps)
     return xr.Dataset(data, coords={TIME[0]: (TIME[0], np.asarray(history["t"]), TIME[1])},
                       attrs=attrs)
 

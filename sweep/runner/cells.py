@@ -4,11 +4,14 @@
 builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
 (``io.scene_schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the
 whole chunk in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell
-arrays of ``cf.VARIABLES``.
+arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that cannot be built is
+flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
+flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
 """
 import hashlib
 import os
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +20,7 @@ import kernels
 from kernels import api, codes
 
 from .. import cf
+from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
 from ..paper import criteria
 from . import grid
@@ -26,6 +30,8 @@ WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
                  "excitation": {"horizontal": {"kind": "sine", "amplitude": "1.5 west",
                                                "frequency": 4.0}},
                  "solver": {"t_end": 0.5}}
+
+CELL_BUDGET = 300.0  # s of wall time one cell may run before it is stopped (run_chunk)
 
 
 def _place(records, buffer, offsets):
@@ -50,22 +56,29 @@ def build_rows(study, cells):
         The shared record buffer (a record used by many cells is stored once).
     bodies : ndarray, shape (n, 3)
         B, H [m] and i_g [m] (NaN for a uniform body) of each cell.
+    problems : dict of int to str
+        Position in ``cells`` to the problem of each cell whose scene cannot be built
+        (loaded, resolved or packed); its row and body are NaN.
     """
     rows = np.empty((len(cells), codes.N_PAR))
     bodies = np.empty((len(cells), 3))
-    buffer, offsets = [], {}
+    buffer, offsets, problems = [], {}, {}
     for k, index in enumerate(cells):
-        resolved = resolve_scene(load_scene(grid.cell_scene(study, int(index)),
-                                            base_dir=study.base_dir))
         records = []
-        rows[k] = api.scene_row(resolved, records)
+        try:
+            resolved = resolve_scene(load_scene(grid.cell_scene(study, int(index)),
+                                                base_dir=study.base_dir))
+            rows[k] = api.scene_row(resolved, records)
+        except (FileProblems, ValueError) as err:
+            rows[k], bodies[k], problems[k] = np.nan, np.nan, str(err)
+            continue
         placed = iter(_place(records, buffer, offsets))
         for start in (codes.P_GX, codes.P_GY):  # scene_row appends horizontal then vertical
             if rows[k, start + codes.G_KIND] == codes.G_RECORD:
                 rows[k, start + codes.G_REC_OFF] = next(placed)
         body = resolved["body"]
         bodies[k] = body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"]
-    return rows, api.record_buffer(buffer), bodies
+    return rows, api.record_buffer(buffer), bodies, problems
 
 
 def summarize(results, bodies):
@@ -93,6 +106,7 @@ def summarize(results, bodies):
         "max_lift": results[:, codes.R_MAX_LIFT],
         "t_rest": results[:, codes.R_T_REST],
         "steps": results[:, codes.R_STEPS],
+        "energy_clamps": results[:, codes.R_ENERGY_CLAMPS],
         "f_at_overturn": results[:, codes.R_F_AT_OVERTURN],
         "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / criteria.west_acceleration(B, H),
         "v_norm_at_overturn": results[:, codes.R_V_AT_OVERTURN] / v_H,
@@ -101,7 +115,7 @@ def summarize(results, bodies):
             for name, a in out.items()}
 
 
-def run_chunk(study, cells):
+def run_chunk(study, cells, *, budget=CELL_BUDGET):
     """Simulate some cells of a study.
 
     Parameters
@@ -109,18 +123,33 @@ def run_chunk(study, cells):
     study : Study
     cells : array_like of int, shape (n,)
         Cell ids (flat indices into the grid).
+    budget : float or None
+        Seconds of wall time a cell may run before it is stopped (``time_budget``);
+        None or 0: no limit.
 
     Returns
     -------
     dict of str to ndarray
         ``cell`` (int64, the ids) and every variable of ``cf.VARIABLES``, first axis = cells.
-        A cell whose simulation fails (budget exhausted, non-finite state, Painleve) is
-        flagged by ``status`` and ``outcome = -1``; nothing is raised for it.
+        A cell whose simulation fails (budget exhausted, non-finite state, Painleve, wall-time
+        budget, a scene that cannot be built) is flagged by ``status`` and ``outcome = -1``;
+        nothing is raised for it (a ``RuntimeWarning`` names the last two kinds).
     """
     cells = np.asarray(cells, dtype=np.int64).reshape(-1)
-    rows, rec, bodies = build_rows(study, cells)
-    results = api.run_cells(rows, rec)
+    rows, rec, bodies, problems = build_rows(study, cells)
+    built = np.ones(cells.size, dtype=bool)
+    built[list(problems)] = False
+    results = api.not_run(cells.size)
+    results[built] = api.run_cells(rows[built], rec, budget=budget)
+    for k, problem in problems.items():
+        _warn(cells[k], f"its scene cannot be built: {problem}")
+    for k in np.flatnonzero(results[:, codes.R_STATUS] == codes.TIME_BUDGET):
+        _warn(cells[k], f"stopped after the per-cell wall-time budget of {budget:g} s")
     return {"cell": cells, **summarize(results, bodies)}
+
+
+def _warn(cell, text):
+    warnings.warn(f"cell {int(cell)}: {text}", RuntimeWarning, stacklevel=3)
 
 
 def kernel_digest():

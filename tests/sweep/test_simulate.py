@@ -1,9 +1,11 @@
 """``sweep.simulate``: one scene from Python, from a dict in file units or a file path."""
+import json
 import math
 
 import pytest
 
 import sweep
+from sweep.runner.simulate import simulate, summary_line, to_json_dict
 
 # PHYSICS A4: B x H = 10 x 30 cm released from theta0 = 0.5 alpha, Housner impacts
 A4_FIRST_IMPACTS = (0.19368, 0.47162, 0.68867)
@@ -29,3 +31,40 @@ def test_simulate_history_is_a_dataset():
     r = sweep.simulate(FREE_ROCKING, history=True)
     theta0 = float(r.history["theta"].isel(time=0))
     assert theta0 == pytest.approx(0.5 * math.atan(1 / 3), rel=1e-12)
+
+
+# DESIGN 10's steady rocking: 79 impacts in 10 s
+STEADY = {"body": {"B": "10 cm", "H": "30 cm"}, "contact": {"mu": 10, "e_x": 0.0, "e_y": 0.0},
+          "excitation": {"horizontal": {"kind": "sine", "amplitude": "1.5 west",
+                                        "frequency": 4.0}},
+          "solver": {"t_end": 10.0}}
+
+
+def _no_constant(name):
+    raise ValueError(f"not standard JSON: {name}")
+
+
+def test_truncated_impact_log_is_flagged():
+    """A log of 10 impacts keeps the first 10 of the kernel's 79; the JSON, the message, the
+    summary line and the history say so."""
+    full = simulate(STEADY)
+    cut = simulate(STEADY, history=True, max_log=10)
+    data = json.loads(json.dumps(to_json_dict(cut), allow_nan=False),
+                      parse_constant=_no_constant)
+    assert data["impact_count"] == full.impact_count == 79
+    assert data["impact_log_truncated"] is True and len(data["impact_times"]) == 10
+    assert data["impact_times"] == full.impact_times[:10]
+    assert "impact log truncated at 10 of 79 impacts" in data["message"]
+    assert "79 impacts" in summary_line(cut)
+    assert cut.history.attrs["impact_count"] == 79
+    assert cut.history.attrs["impact_log_truncated"] == 1
+    whole = to_json_dict(full)
+    assert whole["impact_log_truncated"] is False and whole["impact_count"] == 79
+    assert "truncated" not in whole["message"]
+
+
+def test_restitution_clamped_at_every_impact_is_said():
+    clamped = to_json_dict(simulate({**STEADY, "contact": {"mu": 10, "e_x": 1, "e_y": 1}}))
+    assert clamped["status"] == "ok" and clamped["energy_clamps"] == 79
+    assert "all 79 impacts had their restitution clamped" in clamped["message"]
+    assert to_json_dict(simulate(STEADY))["energy_clamps"] == 0
