@@ -5,14 +5,15 @@ A bodies file lists ``site`` and ``bodies: [{name, B, H, overturned, mu, i_g, di
 (``sweep.io.bodies_schema``).  Output in SI with ``--json``, else a table in the paper's units.
 """
 import argparse
-import json
 import sys
 
+from .cli import command, print_json
 from .io.bodies_schema import load_bodies
 from .io.problems import reported
 from .paper.estimate import estimate, format_text
 
 
+@command
 def main(argv=None):
     parser = argparse.ArgumentParser(
         prog="python -m sweep.estimate",
@@ -27,8 +28,7 @@ def main(argv=None):
         site, bodies = load_bodies(args.bodies)
     result = estimate(bodies)
     if args.json:
-        json.dump({"site": site, **result}, sys.stdout, indent=1)
-        print()
+        print_json({"site": site, **result})
     else:
         print(format_text(result, site))
     return 0

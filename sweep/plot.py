@@ -15,6 +15,7 @@ from contextlib import ExitStack
 from functools import partial
 from pathlib import Path
 
+from .cli import command
 from .io.problems import EXIT_BAD_INPUT
 from .paper import classify
 from .plots.histories import figure_history
@@ -56,6 +57,7 @@ WITHOUT_DATASET = {"fig17"}  # drawn from sweep.paper.criteria alone
 SEVERAL = {f"fig{k:02d}" for k in range(8, 17)}  # drawn from a list of sweep datasets
 
 
+@command
 def main(argv=None):
     import matplotlib
 

@@ -1,14 +1,15 @@
 """``python -m sweep.scene SCENE.yaml [--json] [--plot out.png] [--animate out.gif]
 [--history out.nc]``: run one scene and show what the body did."""
 import argparse
-import json
 import sys
 from pathlib import Path
 
+from .cli import command, print_json
 from .io.problems import reported
 from .runner.simulate import simulate, summary_line, to_json_dict
 
 
+@command
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m sweep.scene", description=__doc__)
     parser.add_argument("scene", help="scene file (YAML)")
@@ -34,8 +35,7 @@ def main(argv=None):
         if args.animate:
             animate_scene(result.history, args.animate, args.scene)
     if args.json:
-        json.dump(to_json_dict(result), sys.stdout, indent=1)
-        print()
+        print_json(to_json_dict(result))
     else:
         print(summary_line(result))
     return 0

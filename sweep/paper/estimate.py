@@ -9,7 +9,10 @@ given record overturning is not monotonic in amplitude (Yim, Chopra & Penzien 19
 Bodies come from ``sweep.io.bodies_schema``; results are in SI, ``format_text`` writes them in
 the paper's units.
 """
+import math
 import textwrap
+
+import numpy as np
 
 from . import criteria
 
@@ -32,14 +35,23 @@ STANDING_NOTE = (
 # --- estimating -------------------------------------------------------------------------------
 
 def body_limits(body):
-    """The lower limits of one body: ``criteria.IshiyamaLimits`` of floats [SI]."""
-    limits = criteria.ishiyama_limits(body.B, body.H, body.i_g)
+    """The lower limits of one body: ``criteria.IshiyamaLimits`` of floats [SI]; inf or NaN
+    for sizes whose limits overflow double precision."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        limits = criteria.ishiyama_limits(body.B, body.H, body.i_g)
     return criteria.IshiyamaLimits(*(float(x) for x in limits))
 
 
-def _notes(body):
-    """Why the criteria may not apply to ``body``."""
+def _finite(row):
+    return all(math.isfinite(row[field]) for field in criteria.IshiyamaLimits._fields)
+
+
+def _notes(body, limits):
+    """Why the criteria may not apply to ``body``, or give it no limits."""
     notes = []
+    if not all(math.isfinite(x) for x in limits):
+        notes.append("its limits overflow double precision (B/H or i_g out of range): it "
+                     "bounds nothing")
     if body.mu is not None and body.mu < body.B / body.H:
         notes.append(f"mu = {body.mu:g} < B/H = {body.B / body.H:.3g}: the body slides "
                      "rather than rocks (the paper's conclusion 1); the criteria assume rocking")
@@ -50,8 +62,9 @@ def _notes(body):
 
 
 def _bounds(rows):
-    """{pga|pgv|pgd: {value, body}} from the overturned rows (None without any)."""
-    fallen = [row for row in rows if row["overturned"]]
+    """{pga|pgv|pgd: {value, body}} from the overturned rows with finite limits (None
+    without any)."""
+    fallen = [row for row in rows if row["overturned"] and _finite(row)]
     if not fallen:
         return None
     out = {}
@@ -90,9 +103,9 @@ def estimate(bodies):
         rows.append({"name": body.name, "B": body.B, "H": body.H, "i_g": body.i_g,
                      "mu": body.mu, "overturned": body.overturned,
                      "direction": body.direction, **limits._asdict(),
-                     "notes": _notes(body)})
+                     "notes": _notes(body, limits)})
     directions = sorted({row["direction"] for row in rows
-                         if row["overturned"] and row["direction"] is not None})
+                         if row["overturned"] and _finite(row) and row["direction"] is not None})
     bounds = _bounds(rows)
     standing = [row for row in rows if not row["overturned"]]
     exceeded = [] if bounds is None else [
@@ -128,8 +141,8 @@ def format_text(result, site=None):
     lines.append("")
     bounds = result["lower_limits"]
     if bounds is None:
-        lines.append("No body overturned: the bodies give no lower limit of the peak ground "
-                     "motion.")
+        lines.append("No body overturned with finite limits: the bodies give no lower limit "
+                     "of the peak ground motion.")
     else:
         lines.append("Lower limits of the peak horizontal ground motion implied by the "
                      "overturned bodies\n(the most demanding body gives each):")

@@ -114,3 +114,28 @@ def test_cli_text_json_and_bad_input(tmp_path):
     assert "bodies[0].B: duplicate key" in out.stderr
     out = cli([tmp_path / "missing.yaml"], cwd=tmp_path, module="sweep.estimate")
     assert out.returncode == 2 and "cannot read" in out.stderr
+
+
+def _no_constant(name):
+    raise ValueError(f"not standard JSON: {name}")
+
+
+def test_json_is_standard_when_limits_overflow(tmp_path):
+    """B/H = 10^400 overflows a_o = (B/H) g to inf and v_o, d_o, T_c to NaN; a radius of
+    gyration of 10^200 m overflows v_o.  They print as null and bound nothing."""
+    bodies = tmp_path / "bodies.yaml"
+    bodies.write_text("bodies:\n"
+                      "  - {name: slab, B: 1.0e+200, H: 1.0e-200, overturned: true}\n"
+                      "  - {name: heavy, B: 10 cm, H: 30 cm, i_g: 1.0e+200, overturned: true}\n"
+                      "  - {name: stone, B: 30 cm, H: 90 cm, overturned: true}\n")
+    out = cli([bodies, "--json"], cwd=tmp_path, module="sweep.estimate")
+    assert out.returncode == 0 and out.stderr == ""
+    data = json.loads(out.stdout, parse_constant=_no_constant)
+    slab, heavy, _ = data["bodies"]
+    assert [slab[k] for k in ("a_o", "v_o", "d_o", "T_c")] == [None] * 4
+    assert heavy["a_o"] == pytest.approx(G / 3, rel=1e-12) and heavy["v_o"] is None
+    assert all("bounds nothing" in row["notes"][0] for row in (slab, heavy))
+    assert {b["body"] for b in data["lower_limits"].values()} == {"stone"}
+    assert data["lower_limits"]["pgv"]["value"] == pytest.approx(v_o(0.3, 0.9), rel=1e-12)
+    text = cli([bodies], cwd=tmp_path, module="sweep.estimate")
+    assert text.returncode == 0 and "peak acceleration >= 327 gal" in text.stdout

@@ -1,0 +1,71 @@
+"""What every command does around its work: how it ends, and the JSON it prints.
+
+``command`` decorates a command's entry point ``main(argv=None) -> int``, the function that
+both ``python -m sweep.<name>`` and the console script call::
+
+    @command
+    def main(argv=None):
+        ...
+        return 0
+
+    if __name__ == "__main__":
+        sys.exit(main())
+
+The decorated ``main`` returns the exit status instead of a traceback when
+
+* the reader of its output goes away (``python -m sweep.scene s.yaml --json | head -1``):
+  stdout is pointed at ``os.devnull``, so that the interpreter's last flush cannot fail
+  either (the recipe of the Python docs, "Note on SIGPIPE"), and the status is 141 = 128 +
+  SIGPIPE, what a shell reports for a program ended by a broken pipe (``yes | head -1``);
+  under ``set -o pipefail`` the command thus counts as those do;
+* the user presses Ctrl-C: one line ``interrupted`` on stderr, status 130 = 128 + SIGINT.
+
+``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``.
+"""
+import functools
+import json
+import math
+import os
+import sys
+
+import numpy as np
+
+EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE
+EXIT_INTERRUPTED = 130  # 128 + SIGINT
+
+
+def command(main):
+    """``main(argv=None) -> int`` that ends quietly on a closed pipe or Ctrl-C (see above)."""
+    @functools.wraps(main)
+    def guarded(argv=None):
+        try:
+            status = main(argv)
+            sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
+            return status
+        except BrokenPipeError:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+            return EXIT_BROKEN_PIPE
+        except KeyboardInterrupt:
+            print("interrupted", file=sys.stderr)
+            return EXIT_INTERRUPTED
+    return guarded
+
+
+def jsonable(value):
+    """``value`` with non-finite floats as None, numpy scalars and arrays as Python values."""
+    if isinstance(value, dict):
+        return {key: jsonable(v) for key, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [jsonable(v) for v in value]
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    if isinstance(value, (np.integer, np.bool_)):
+        return value.item()
+    return value
+
+
+def print_json(value):
+    """Print ``value`` as one standard JSON document (``jsonable``) on stdout."""
+    json.dump(jsonable(value), sys.stdout, indent=1, allow_nan=False)
+    print()
