@@ -12,6 +12,7 @@ import re
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from stat import S_ISREG
 
 import numpy as np
 
@@ -244,7 +245,8 @@ def read_record_file(path, units=None):
     Raises
     ------
     RecordError
-        Missing or unreadable file, or ``units`` given for an ``.AT2`` file.
+        Missing or unreadable file, not a regular file, or ``units`` given for an ``.AT2``
+        file.
     """
     path = Path(path)
     if path.suffix.lower() == ".at2" and units is not None:
@@ -253,4 +255,6 @@ def read_record_file(path, units=None):
         stat = path.stat()
     except OSError as err:
         raise RecordError(f"{path}: cannot read: {err.strerror}") from None
+    if not S_ISREG(stat.st_mode):  # a folder, or a device or pipe that may never end
+        raise RecordError(f"{path}: not a regular file")
     return _read_file_cached(str(path), units or "m/s^2", (stat.st_mtime_ns, stat.st_size))

@@ -13,6 +13,7 @@ units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numb
 the normalized levels they are (CF units ``1``).
 """
 import math
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -176,7 +177,7 @@ def _unit_name(unit):
 
 
 def _finite(value):
-    return _number(value) and math.isfinite(value)
+    return _number(value) and abs(value) <= sys.float_info.max  # NaN compares false
 
 
 def _count(value):
@@ -212,7 +213,7 @@ class RangeSpec(StrictModel):
 
     @model_validator(mode="after")
     def _values_or_range(self):
-        given = self.model_fields_set
+        given = {key for key in self.model_fields_set if getattr(self, key) is not None}
         if self.values is not None:
             errors = [(key, getattr(self, key), "give either values or start/stop/num, not both")
                       for key in ("start", "stop", "num", "spacing") if key in given]

@@ -3,7 +3,8 @@
 A file can never run code (only the safe constructors), and a key given twice is reported with
 its dotted path instead of silently keeping the last value.  These are configuration files, so
 more is refused: anchors and aliases (``&name``, ``*name``: a few hundred bytes of them expand
-to billions of values), nesting deeper than :data:`MAX_DEPTH`, keys that are not strings
+to billions of values), nesting deeper than :data:`MAX_DEPTH`, files larger than
+:data:`MAX_TEXT_BYTES` (which also bounds reading ``/dev/zero``), keys that are not strings
 (``on:``, ``1:``) and strings holding control characters.  Every problem is a
 :class:`~sweep.io.problems.Problem`, so that a user sees them all at once.
 """
@@ -50,6 +51,7 @@ def _duplicates(node, path):
 
 
 MAX_DEPTH = 64  # levels of nested mappings and lists; our files need five
+MAX_TEXT_BYTES = 1_000_000  # our files have a few kB; PyYAML reads some 100 kB a second
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")  # all but tab and newlines
 
 
@@ -158,9 +160,15 @@ def parse_yaml(text):
 
 
 def read_text(path):
-    """Text of a file, or :class:`FileProblems` saying why it cannot be read."""
+    """Text of a file of at most :data:`MAX_TEXT_BYTES`, or :class:`FileProblems` saying why it
+    cannot be read."""
     try:
-        return Path(path).read_text(encoding="utf-8")
+        with open(path, "rb") as f:
+            data = f.read(MAX_TEXT_BYTES + 1)
+        if len(data) > MAX_TEXT_BYTES:
+            raise FileProblems([Problem("(file)", str(path), f"larger than {MAX_TEXT_BYTES} "
+                                        "bytes: give long axes as {start, stop, num}")], path)
+        return data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as err:
         reason = getattr(err, "strerror", None) or err
         raise FileProblems([Problem("(file)", str(path), f"cannot read: {reason}")], path) from None
