@@ -12,6 +12,7 @@ The command parses its arguments, takes the communicator (``runner.mpi``) and ha
 import argparse
 import sys
 
+from .cli import command
 from .io.problems import EXIT_BAD_INPUT
 
 EXIT_FAILED = 1
@@ -82,6 +83,7 @@ def parse_args(argv=None):
     return args
 
 
+@command
 def main(argv=None):
     """Entry point; returns the exit status (0 ok, 1 error, 2 bad input or refused, 130
     interrupted)."""

@@ -13,7 +13,9 @@ one process and returns the Dataset (``sweep.run_study`` in a notebook).
 import functools
 import signal
 import sys
+import threading
 import time
+from contextlib import contextmanager
 
 from .. import cf
 from ..io.files import output_problem
@@ -225,6 +227,19 @@ def _interrupted(state):
         file=sys.stderr)
 
 
+@contextmanager
+def _sigint_ignored():
+    """Ignore Ctrl-C for a moment (main thread only; the handler is restored after)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def run(comm, args):
     """Every rank's part of ``python -m sweep.run`` (``args`` of ``sweep.run.parse_args``);
     returns the exit status: 0 done, 2 bad input or refused, 130 interrupted."""
@@ -232,9 +247,9 @@ def run(comm, args):
     try:
         return _run(comm, args, state)
     except KeyboardInterrupt:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not cut the line
         if comm.Get_rank() == 0:
-            _interrupted(state)
+            with _sigint_ignored():  # a second Ctrl-C must not cut the line
+                _interrupted(state)
         return EXIT_INTERRUPTED
     finally:
         if state.lock is not None:

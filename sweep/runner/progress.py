@@ -2,7 +2,8 @@
 
 Log lines (one per ~10 % or ``LOG_EVERY`` seconds) are used when the stream is not a terminal
 or the ``CI`` variable is set, so that logs of batch jobs and CI stay readable; ``quiet``
-shows nothing.
+shows nothing.  Lines go out through :func:`emit`: a study goes on when the reader of its
+output goes away (``sweep.run s.yaml 2>&1 | head``), since its results are in the files.
 """
 import os
 import sys
@@ -10,6 +11,17 @@ import time
 
 LOG_EVERY = 30.0  # s between log lines at most
 LOG_STEP = 0.1  # fraction of the cells between log lines
+
+
+def emit(text, stream):
+    """Print a line at once; when the reader is gone, the stream goes to ``os.devnull`` and
+    the run carries on."""
+    try:
+        print(text, file=stream, flush=True)
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, stream.fileno())
+        os.close(devnull)
 
 
 def format_seconds(s):
@@ -79,7 +91,7 @@ class Progress:
                 f"{format_seconds(now - self.start)} elapsed"
                 + (f", ETA {format_seconds(eta)}" if eta is not None and self.done < self.total
                    else ""))
-        print(text, file=self.stream, flush=True)
+        emit(text, self.stream)
         self._last_time, self._last_done = now, self.done
 
     def close(self):

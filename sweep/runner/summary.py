@@ -12,15 +12,16 @@ from kernels import codes
 from .. import cf
 from . import grid, refine, store
 from .grid import shape_text
-from .progress import format_seconds
+from .progress import emit, format_seconds
 
 SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
 MAX_LISTED = 20  # failed cells listed in the summary
 
 
-def say(*text, file=sys.stdout):
-    """Print at once (ranks share the terminal; a buffered line would come late)."""
-    print(*text, file=file, flush=True)
+def say(*text, file=None):
+    """Print at once (ranks share the terminal; a buffered line would come late), and go on
+    when the reader is gone (``progress.emit``)."""
+    emit(" ".join(map(str, text)), sys.stdout if file is None else file)
 
 
 def _tolerance_text(study):

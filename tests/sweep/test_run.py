@@ -184,3 +184,36 @@ def test_a_parts_folder_taken_by_a_file_is_refused(tmp_path, small_study):
     assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
     assert "r.nc.parts (the folder of the part files) is taken by a file" in done.stderr
     assert not (tmp_path / "r.nc").exists()
+
+
+@pytest.mark.slow
+def test_kills_at_random_moments_resume_to_the_same_dataset(tmp_path):
+    """SIGKILL at uniformly random moments of a run's life (start-up, cells, the final write,
+    the clean-up), again and again until a run completes: always the reference dataset."""
+    raw = make_study(SLOW, output="ref.nc")
+    raw["scene"]["solver"]["t_end"] = 8.0
+    study = write_study(tmp_path / "slow.yaml", raw)
+    t0 = time.monotonic()
+    assert cli([study, "--quiet"], cwd=tmp_path, timeout=240).returncode == 0
+    whole = time.monotonic() - t0
+    reference = without_run_attrs(xr.open_dataset(tmp_path / "ref.nc"))
+    rng = np.random.default_rng(7)
+    outputs, kills = 10, 0
+    for k in range(outputs):
+        while True:
+            run = subprocess.Popen([PY, "-m", "sweep.run", str(study), "-o", f"k{k}.nc",
+                                    "--chunk-size", "3", "--quiet"], cwd=tmp_path,
+                                   env=cli_env(), stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.PIPE, text=True)
+            try:
+                _, err = run.communicate(timeout=rng.uniform(0.0, 1.1 * whole))
+                assert run.returncode == 0, err
+                break
+            except subprocess.TimeoutExpired:
+                run.kill()
+                run.communicate()
+                kills += 1
+        result = without_run_attrs(xr.open_dataset(tmp_path / f"k{k}.nc"))
+        assert result.identical(reference), k
+        assert sorted(p.name for p in tmp_path.glob(f"*k{k}.nc*")) == [f"k{k}.nc"]
+    print(f"{kills} kills at random moments, {outputs}/{outputs} datasets identical")
