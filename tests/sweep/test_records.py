@@ -141,3 +141,32 @@ def test_two_column_errors(tmp_path):
         read_record_file(tmp_path / "missing.txt")
     with pytest.raises(RecordError, match="relative to the body"):
         read_two_column(back, "west")
+
+
+@pytest.mark.parametrize("text, message", [
+    ("0 0.1\n0.01 nan\n", "acceleration of data row 2 is not a finite number"),
+    ("0 0.1\ninf 0.2\n", "time of data row 2 is not a finite number"),
+    ("0 0.1\n0.01 1e400\n", "not a finite number: inf"),
+    ("", "no data rows"),
+])
+def test_two_column_non_finite_or_empty(tmp_path, text, message):
+    path = tmp_path / "r.txt"
+    path.write_text(text)
+    with pytest.raises(RecordError, match=message):
+        read_two_column(path)
+
+
+def test_resampling_bounded(tmp_path):
+    """A few rows whose median step is tiny would make trillions of samples."""
+    path = tmp_path / "r.txt"
+    path.write_text("0 0.1\n1e-12 0.2\n2e-12 0.3\n3e-12 0.1\n1000 0.0\n")
+    with pytest.raises(RecordError, match=rf"r.txt: .*dt = 1e-12 s would make 1e\+15 samples, "
+                                          rf"more than {records.MAX_SAMPLES}"):
+        read_two_column(path)
+
+
+def test_only_regular_files(tmp_path):
+    with pytest.raises(RecordError, match="not a regular file"):
+        read_record_file("/dev/zero")
+    with pytest.raises(RecordError, match="not a regular file"):
+        read_record_file(tmp_path)

@@ -111,3 +111,35 @@ def test_cli_bad_file_exit_2_nothing_written(tmp_path):
         assert f"{path}: " in done.stderr and word in done.stderr
     assert "(got: 1.5)" in done.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["study.yaml"]  # no output, no parts
+
+
+def test_cell_count_limit():
+    study = make_study({"amplitude": {"start": 1, "stop": 2, "num": 1000},
+                        "frequency": {"start": 1, "stop": 2, "num": 1000}})
+    with pytest.raises(FileProblems) as info:
+        load_study(study, max_cells=999_999)
+    [problem] = info.value.problems
+    assert problem.path == "grid" and problem.value == "amplitude 1000 x frequency 1000"
+    assert "1000000 cells, more than the limit of 999999" in problem.message
+    assert "--max-cells" in problem.message
+    assert load_study(study, max_cells=0).n_cells == 1_000_000
+
+
+def test_large_grids_checked_by_a_bounded_choice_of_cells():
+    """Each value of every axis is checked; the cells are far fewer than the grid's."""
+    from sweep.io import study_schema
+    study = load_study(make_study({"amplitude": {"start": 1, "stop": 2, "num": 3000},
+                                   "frequency": [1.0, 2.0, 3.0, -4.0]}), check_cells=False)
+    checked = study_schema._checked_cells(study)
+    n_checked = study_schema.CHECKED_PER_DIM + 4 + study_schema.SAMPLED_CELLS
+    assert study.n_cells > study_schema.CHECK_ALL_CELLS and len(checked) <= n_checked
+    assert [p.path for p in study_schema.cell_problems(study)] == ["grid.frequency[3]"]
+
+
+def test_axis_length_and_repeats():
+    with pytest.raises(FileProblems) as info:
+        load_study(make_study({"amplitude": {"start": 1, "stop": 2, "num": 10**7},
+                               "mu": [0.5, 0.2] * 50_000}))
+    assert {p.path: p.message for p in info.value.problems} == {
+        "grid.amplitude.num": "must be an integer >= 1, at most 1000000",
+        "grid.mu": "values repeat: 0.2"}

@@ -77,6 +77,8 @@ def test_body_relative_needs_the_body():
     (None, "length", "expected a number"),
     ([1], "length", "expected a number"),
     (float("nan"), "length", "finite"),
+    (10**400, "length", "finite"),
+    ("1e400 m", "length", "finite"),
     ("inf", "length", "expected a number"),
     ("1 cm", ("acceleration", "velocity"), "expected an acceleration or a velocity"),
 ])
