@@ -16,7 +16,8 @@ from functools import partial
 from pathlib import Path
 
 from .cli import command
-from .io.problems import EXIT_BAD_INPUT
+from .io.files import output_problems
+from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .paper import classify
 from .plots.histories import figure_history
 from .plots.limits import figure_limits
@@ -77,6 +78,10 @@ def main(argv=None):
                                                    "forms)" if args.result else "needs a RESULT"))
     if len(args.result) > 1 and args.figure not in SEVERAL:
         parser.error(f"--figure {args.figure} takes one RESULT")
+    unusable = output_problems({"-o/--output": args.output})
+    if unusable:  # before any work
+        print(FileProblems(unusable), file=sys.stderr)
+        return EXIT_BAD_INPUT
     if not args.result:
         return _save(FIGURES[args.figure](), args.output)
 

@@ -5,7 +5,8 @@ import sys
 from pathlib import Path
 
 from .cli import command, print_json
-from .io.problems import reported
+from .io.files import output_problems
+from .io.problems import FileProblems, reported
 from .runner.simulate import simulate, summary_line, to_json_dict
 
 
@@ -19,6 +20,10 @@ def main(argv=None):
     parser.add_argument("--history", metavar="NC", help="write the time history (netCDF)")
     args = parser.parse_args(argv)
     with reported(args.scene):
+        outputs = output_problems({f"--{key}": getattr(args, key)
+                                   for key in ("plot", "animate", "history")})
+        if outputs:  # before any work
+            raise FileProblems(outputs, args.scene)
         result = simulate(args.scene, history=bool(args.plot or args.animate or args.history))
     if args.history:
         from .runner.store import write_netcdf

@@ -9,6 +9,8 @@ from contextlib import contextmanager
 from pathlib import Path
 
 TMP_MARK = ".tmp"  # ending of temporary names (a killed run's leftovers are found by it)
+NAME_MAX, PATH_MAX = 255, 4096  # bytes of one name and of a whole path (Linux)
+NAME_RESERVE = 40  # bytes that names made from an output's add (".<name>.parts.<pid>.trash")
 
 
 def temporary_name(path):
@@ -54,6 +56,12 @@ def output_problem(path):
     if not text.strip():
         return "is empty"
     path = Path(text).absolute()
+    longest = max(len(part.encode()) for part in path.parent.parts)
+    if max(longest + 1, len(path.name.encode()) + NAME_RESERVE) > NAME_MAX:
+        return (f"has a name too long for the file system ({NAME_MAX} bytes a name, "
+                f"less {NAME_RESERVE} for the names made from the output's)")
+    if len(str(path).encode()) >= PATH_MAX:
+        return f"is {len(str(path).encode())} bytes long; the system takes paths below {PATH_MAX}"
     if path.is_dir():
         return "is an existing folder: give a file name such as results/x.nc"
     folder = next(p for p in path.parents if p.exists())  # the root exists
@@ -70,3 +78,11 @@ def _pseudo(folder):
     """True inside the kernel's pseudo file systems, where root may "write" but nothing keeps."""
     resolved = Path(folder).resolve()
     return any(resolved == Path(p) or Path(p) in resolved.parents for p in ("/proc", "/sys"))
+
+
+def output_problems(paths):
+    """Problems of the output files a command was given: ``{option: path or None}`` ->
+    :class:`~sweep.io.problems.Problem` s at the option's name (none given, none checked)."""
+    from .problems import Problem
+    return [Problem(option, str(path), why) for option, path in paths.items()
+            if path is not None and (why := output_problem(path)) is not None]

@@ -217,3 +217,18 @@ def test_kills_at_random_moments_resume_to_the_same_dataset(tmp_path):
         assert result.identical(reference), k
         assert sorted(p.name for p in tmp_path.glob(f"*k{k}.nc*")) == [f"k{k}.nc"]
     print(f"{kills} kills at random moments, {outputs}/{outputs} datasets identical")
+
+
+def test_a_cell_over_the_budget_is_flagged_and_the_study_goes_on(tmp_path):
+    # a fixed step of 0.1 us over 100 s would run for hours; the 1 ms one takes milliseconds
+    raw = make_study({"solver.dt": [1e-3, 1e-7]}, output="r.nc")
+    raw["scene"]["solver"] = {"method": "fixed", "t_end": 100.0}
+    study = write_study(tmp_path / "s.yaml", raw)
+    t0 = time.monotonic()
+    done = cli([study, "--cell-budget", "1"], cwd=tmp_path, timeout=120)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+    assert time.monotonic() - t0 < 30
+    assert "1 cell failed" in done.stderr and "time_budget" in done.stderr
+    ds = xr.open_dataset(tmp_path / "r.nc")
+    assert ds["status"].values.tolist() == [codes.OK, codes.TIME_BUDGET]
+    assert ds["outcome"].values.tolist()[1] == codes.FAILED

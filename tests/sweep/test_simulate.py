@@ -1,11 +1,15 @@
 """``sweep.simulate``: one scene from Python, from a dict in file units or a file path."""
 import json
 import math
+from pathlib import Path
 
 import pytest
+from study_helpers import cli
 
 import sweep
 from sweep.runner.simulate import simulate, summary_line, to_json_dict
+
+ROOT = Path(__file__).resolve().parents[2]
 
 # PHYSICS A4: B x H = 10 x 30 cm released from theta0 = 0.5 alpha, Housner impacts
 A4_FIRST_IMPACTS = (0.19368, 0.47162, 0.68867)
@@ -68,3 +72,15 @@ def test_restitution_clamped_at_every_impact_is_said():
     assert clamped["status"] == "ok" and clamped["energy_clamps"] == 79
     assert "all 79 impacts had their restitution clamped" in clamped["message"]
     assert to_json_dict(simulate(STEADY))["energy_clamps"] == 0
+
+
+def test_scene_outputs_are_checked_before_any_work(tmp_path):
+    (tmp_path / "file").write_text("a file")
+    done = cli(["studies/steady_rocking.yaml", "--plot", "/proc/x.png", "--history",
+                str(tmp_path / "file" / "h.nc"), "--animate", str(tmp_path / "ok.gif")],
+               cwd=ROOT, timeout=60, module="sweep.scene")
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert "--plot: its folder /proc is not writable" in done.stderr
+    assert f"--history: {tmp_path / 'file'} is a file, not a folder" in done.stderr
+    assert "--animate" not in done.stderr and done.stdout == ""  # nothing was run
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
