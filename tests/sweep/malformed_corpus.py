@@ -202,8 +202,8 @@ def _structure_cases(base, tool, args, data, overridden):
             continue
         path = _dotted(keys)
         unknown = _dotted(keys + ("zz_unknown",))
-        out.append(_case(f"{base}:{unknown}", tool, args, _text(_set(data, keys + ("zz_unknown",), 1)),
-                         BAD, unknown))
+        text = _text(_set(data, keys + ("zz_unknown",), 1))
+        out.append(_case(f"{base}:{unknown}", tool, args, text, BAD, unknown))
         for key in node:
             out.append(_case(f"{base}:-{_dotted(keys + (key,))}", tool, args,
                              _text(_set(data, keys + (key,), None)), EITHER))
