@@ -56,8 +56,8 @@ def _load(args):
 def _open(study, args, parts):
     """Take the output's lock and make the output and parts ready (rank 0).
 
-    Returns the lock, or None when a run killed after writing this very dataset only had its
-    clean-up to finish (done here).
+    Returns the lock, or None when the output is already the dataset of these very inputs
+    (a run killed after writing it only had its clean-up to finish: done here).
 
     Raises
     ------
@@ -71,11 +71,13 @@ def _open(study, args, parts):
             say(f"sweep.run: removed what a killed run left: {', '.join(removed)}",
                 file=sys.stderr)
         stamp = store.fingerprint.combined(store.fingerprint.components(study))
-        if not args.force and parts.manifest_stamp() == stamp \
-                and store.finished_earlier(study.output, stamp):
-            parts.remove()
-            say(f"sweep.run: {study.output} was already complete; removed the part files "
-                "its run left", file=sys.stderr)
+        if not args.force and store.finished_earlier(study.output, stamp):
+            ours = parts.manifest_stamp() == stamp  # a run killed before its clean-up ended
+            if ours:
+                parts.remove()
+            say(f"sweep.run: {study.output} is already complete for these inputs"
+                + ("; removed the part files its run left" if ours else "")
+                + "; nothing to do (--force computes it again)", file=sys.stderr)
             lock.release()
             return None
         store.check_output(study.output, args.force)

@@ -5,7 +5,10 @@ history as an xarray Dataset (``cf.history_dataset``).
 """
 from kernels.api import MAX_LOG
 
+from ..io.problems import FileProblems, Problem
 from ..io.scene_schema import load_scene, resolve_scene
+
+MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
 
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
              "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
@@ -22,10 +25,13 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     Raises
     ------
     FileProblems
-        Every problem of the scene, with dotted paths (nothing is run).
+        Every problem of the scene, with dotted paths (nothing is run); with ``history``, a
+        history of more than ``MAX_HISTORY`` samples too.
     """
     from kernels import run_scene
     resolved = resolve_scene(load_scene(scene))
+    if history:
+        _check_history(resolved, None if isinstance(scene, dict) else scene)
     result = run_scene(resolved, history=history, max_log=max_log)
     if history:
         from ..cf import history_dataset
@@ -33,6 +39,17 @@ def simulate(scene, history=False, max_log=MAX_LOG):
         result = result._replace(history=history_dataset(result.history, resolved, source,
                                                          result))
     return result
+
+
+def _check_history(resolved, source):
+    """Refuse a history too long to hold (``t_end / dt_out`` samples)."""
+    solver = resolved["solver"]
+    samples = solver["t_end"] / solver["dt_out"]
+    if samples > MAX_HISTORY:
+        raise FileProblems([Problem("solver.dt_out", solver["dt_out"],
+                                    f"a history over t_end = {solver['t_end']:g} s every "
+                                    f"{solver['dt_out']:g} s has {samples:.3g} samples, more "
+                                    f"than {MAX_HISTORY}: give a larger dt_out")], source)
 
 
 def summary_line(result):

@@ -28,7 +28,7 @@ def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):
     assert tiny["overturned"].values.tolist() == [0, -1, -1]
     assert np.all(big["outcome"].values >= 0) and np.all(big["status"].values != 2)
 
-    # the command line lists the failed cells at the end, and refuses to overwrite
+    # the command line lists the failed cells at the end, and keeps the result
     study = write_study(tmp_path / "fail.yaml", raw)
     done = cli([study], cwd=tmp_path, timeout=120)
     assert done.returncode == 0, done.stderr
@@ -40,8 +40,8 @@ def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):
         study_file=str(study)))  # the dict's YAML is the file's text
     assert not store.parts_dir(result).exists()  # parts removed once the dataset is written
     stamp = result.stat().st_mtime_ns
-    again = cli([study], cwd=tmp_path, timeout=60)
-    assert again.returncode == 2 and "--force" in again.stderr and "Traceback" not in again.stderr
+    again = cli([study], cwd=tmp_path, timeout=60)  # the same inputs: nothing to do
+    assert again.returncode == 0 and "already complete for these inputs" in again.stderr
     assert result.stat().st_mtime_ns == stamp
     forced = cli([study, "--force", "--quiet"], cwd=tmp_path, timeout=120)
     assert forced.returncode == 0 and result.stat().st_mtime_ns != stamp
@@ -149,13 +149,17 @@ def test_a_run_killed_after_its_dataset_was_written_finishes_its_clean_up(tmp_pa
     parts.write_part(run_chunk(load_study(study), np.arange(4)))
     again = cli([study], cwd=tmp_path)
     assert again.returncode == 0, again.stderr
-    assert "already complete; removed the part files" in again.stderr
+    assert "already complete for these inputs; removed the part files" in again.stderr
     assert not parts.directory.exists() and (tmp_path / "r.nc").stat().st_mtime_ns == stamp
-    # parts of other inputs beside the dataset are no such leftover: refused as before
+    # parts of other inputs beside the dataset are no such leftover: kept
     parts.prepare(load_study(dict(small_study, grid={"amplitude": [0.5, 1.0]})))
-    refused = cli([study], cwd=tmp_path)
+    kept = cli([study], cwd=tmp_path)
+    assert kept.returncode == 0 and "removed" not in kept.stderr and parts.directory.exists()
+    # a dataset of other inputs is never taken for done
+    other = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc",
+                                                 grid={"amplitude": [0.5, 1.0]}))
+    refused = cli([other], cwd=tmp_path)
     assert refused.returncode == 2 and "exists; run with --force" in refused.stderr
-    assert parts.directory.exists()
 
 
 @pytest.mark.parametrize("output, reason", [

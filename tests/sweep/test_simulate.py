@@ -84,3 +84,13 @@ def test_scene_outputs_are_checked_before_any_work(tmp_path):
     assert f"--history: {tmp_path / 'file'} is a file, not a folder" in done.stderr
     assert "--animate" not in done.stderr and done.stdout == ""  # nothing was run
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_a_history_too_long_to_hold_is_refused_before_the_run():
+    from sweep.io.problems import FileProblems
+    from sweep.runner.simulate import MAX_HISTORY
+    scene = {"body": {"B": 0.1, "H": 0.3}, "solver": {"t_end": 1e7}}  # dt_out 0.02 s: 5e8
+    with pytest.raises(FileProblems, match="solver.dt_out: a history over t_end = 1e.07 s"):
+        simulate(scene, history=True)
+    assert 1e7 / 0.02 > MAX_HISTORY
+    assert simulate(scene).status == "ok"  # without a history it runs (at rest: at once)
