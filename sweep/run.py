@@ -11,6 +11,7 @@ The command parses its arguments, takes the communicator (``runner.mpi``) and ha
 """
 import argparse
 import sys
+import warnings
 
 from .cli import command
 from .io.problems import EXIT_BAD_INPUT
@@ -96,11 +97,17 @@ def main(argv=None):
         return EXIT_BAD_INPUT
     from .runner import launch  # the study machinery once the communicator stands
     try:
-        with mpi.abort_on_exception(comm):  # under MPI a failure ends the job there
+        with mpi.abort_on_exception(comm), warnings.catch_warnings():
+            warnings.showwarning = _one_line  # cells flagged as they fail: one line each
             return launch.run(comm, args)
     except mpi.JobFailure as err:  # one process: said in words
         print(f"sweep.run: error: {err}", file=sys.stderr, flush=True)
         return EXIT_FAILED
+
+
+def _one_line(message, category, filename, lineno, file=None, line=None):
+    """A warning as one line of the run's log, without the source line."""
+    print(f"sweep.run: warning: {message}", file=sys.stderr, flush=True)
 
 
 if __name__ == "__main__":
