@@ -16,8 +16,7 @@ that turns out valid runs in a blink:
 
 Each case says which exit statuses are right: ``{2}`` when the file is malformed by
 construction, ``{0}`` when it is valid by construction (BOM, CRLF, comments), ``{0, 2}`` when it
-depends on the field (a negative number, null for an optional key).  ``output`` marks the cases
-about output paths (:data:`OUTPUT_PATH_CASES`).
+depends on the field (a negative number, null for an optional key).
 """
 import copy
 import random
@@ -33,10 +32,10 @@ STUDIES = Path(__file__).resolve().parents[2] / "studies"
 SEED = 20240611
 HOSTILE_PER_LEAF = 5  # hostile values tried per leaf (a seeded choice, the sure ones first)
 
-Case = namedtuple("Case", "name tool args files expect path output")
+Case = namedtuple("Case", "name tool args files expect path")
 Case.__doc__ = """One run: ``tool`` (scene, run, estimate) with ``args`` on ``files`` ({name:
 bytes}, the first is the input file); ``expect`` the right exit statuses; ``path`` the dotted
-path a message must name (None: any); ``output`` True for an output-path case."""
+path a message must name (None: any)."""
 
 BAD, VALID, EITHER = frozenset({2}), frozenset({0}), frozenset({0, 2})
 NUMBER, TEXT, FLAG, CHOICE = "number", "text", "flag", "choice"
@@ -163,10 +162,9 @@ def _bases():
 
 # --- cases --------------------------------------------------------------------------------
 
-def _case(name, tool, args, text, expect, path=None, files=None, output=False):
+def _case(name, tool, args, text, expect, path=None, files=None):
     body = text.encode() if isinstance(text, str) else text
-    return Case(name, tool, list(args), {"input.yaml": body, **(files or {})}, expect, path,
-                output)
+    return Case(name, tool, list(args), {"input.yaml": body, **(files or {})}, expect, path)
 
 
 def _leaf_cases(base, tool, args, data, overridden, rng):
@@ -189,8 +187,7 @@ def _leaf_cases(base, tool, args, data, overridden, rng):
             bad = yaml_level or (kind in bad_for and not hidden)
             text = _text(_set(data, keys, "@HOSTILE@"), raw)
             out.append(_case(f"{base}:{path}={label}", tool, args, text,
-                             BAD if bad else EITHER, path if bad else None,
-                             output=path == "output" and not yaml_level))
+                             BAD if bad else EITHER, path if bad else None))
     return out
 
 
@@ -369,7 +366,7 @@ def _grid_cases(smoke):
                           ("directory", "."), ("long", "o" * 5000 + ".nc"),
                           ("dev_null_dir", "/dev/null/x.nc")):
         out.append(_case(f"output:{label}", "run", [], _text({**smoke, "output": output}), BAD,
-                         output=True))
+                         "output"))
     return out
 
 
@@ -389,6 +386,3 @@ def cases():
     assert len(names) == len(set(names)), "case names must be unique"
     return out
 
-
-OUTPUT_PATH_CASES = frozenset(c.name for c in cases() if c.output)
-"""Cases about output paths, whose checks live in ``sweep/io/files.py`` and the runner."""

@@ -145,7 +145,7 @@ def _problems(case, outcome):
     if outcome.code not in case.expect:
         wrong.append(f"exit status {outcome.code}, expected {sorted(case.expect)}")
     if outcome.code == 2:
-        if not LOCATED.search(outcome.stderr) and not case.output:
+        if not LOCATED.search(outcome.stderr):
             wrong.append("no problem line names a path, (file) or a line and column")
         if case.path and case.path not in outcome.stderr and "line " not in outcome.stderr:
             wrong.append(f"the message does not name {case.path}")
@@ -154,18 +154,8 @@ def _problems(case, outcome):
     return wrong
 
 
-@pytest.mark.parametrize("name", [c.name for c in CASES if not c.output])
+@pytest.mark.parametrize("name", [c.name for c in CASES])
 def test_case(outcomes, name):
-    case, outcome = BY_NAME[name], outcomes[name]
-    assert not _problems(case, outcome), (_problems(case, outcome), outcome.stderr[-2000:])
-
-
-@pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.xfail(
-    strict=False, reason="output paths are checked by sweep/io/files.py and the runner"))
-    for name in sorted(corpus.OUTPUT_PATH_CASES)])
-def test_output_path_case(outcomes, name):
-    """The cases of :data:`malformed_corpus.OUTPUT_PATH_CASES`, expected to fail until every
-    output path is checked before any work (``sweep/io/files.py``)."""
     case, outcome = BY_NAME[name], outcomes[name]
     assert not _problems(case, outcome), (_problems(case, outcome), outcome.stderr[-2000:])
 
