@@ -8,7 +8,6 @@ arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that canno
 flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
 flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
 """
-import hashlib
 import os
 import sys
 import warnings
@@ -23,7 +22,7 @@ from .. import cf
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
 from ..paper import criteria
-from . import grid
+from . import fingerprint, grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
@@ -152,19 +151,12 @@ def _warn(cell, text):
     warnings.warn(f"cell {int(cell)}: {text}", RuntimeWarning, stacklevel=3)
 
 
-def kernel_digest():
-    """Hash of the kernel's sources (parts computed by another kernel are other results)."""
-    digest = hashlib.sha256()
-    for path in sorted(Path(kernels.__file__).parent.glob("*.py")):
-        digest.update(path.name.encode() + path.read_bytes())
-    return digest.hexdigest()
-
-
 def _marker():
     """File saying that this kernel was compiled into the numba cache (see ``kernel_cached``)."""
     base = os.environ.get("NUMBA_CACHE_DIR") or Path(kernels.__file__).parent / "__pycache__"
     version = f"py{sys.version_info[0]}{sys.version_info[1]}"
-    return Path(base) / f"sweep-warm-{kernel_digest()[:16]}-{version}"
+    kernel = fingerprint.source_digest(("kernels/*.py",))
+    return Path(base) / f"sweep-warm-{kernel[:16]}-{version}"
 
 
 def kernel_cached():
