@@ -12,7 +12,6 @@ boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are
 units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as
 the normalized levels they are (CF units ``1``).
 """
-import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path

@@ -8,8 +8,6 @@ to billions of values), nesting deeper than :data:`MAX_DEPTH`, files larger than
 (``on:``, ``1:``) and strings holding control characters.  Every problem is a
 :class:`~sweep.io.problems.Problem`, so that a user sees them all at once.
 """
-from pathlib import Path
-
 import re
 
 import yaml

@@ -3,6 +3,7 @@ import copy
 import os
 import subprocess
 import sys
+import time
 
 import yaml
 
@@ -46,3 +47,24 @@ def without_run_attrs(ds):
     for key in RUN_ATTRS:
         ds.attrs.pop(key, None)
     return ds
+
+
+# 240 cells of a block rocking to the end: seconds of work, for runs killed or stopped midway
+SLOW = {"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
+        "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}
+
+
+def slow_study(folder, t_end, output="r.nc"):
+    """The SLOW grid rocking for ``t_end`` seconds, written to ``folder/slow.yaml``:
+    (raw dict, path)."""
+    raw = make_study(SLOW, output=output)
+    raw["scene"]["solver"]["t_end"] = t_end
+    return raw, write_study(folder / "slow.yaml", raw)
+
+
+def wait_for_parts(process, parts_dir, n_parts, timeout=120.0):
+    """Wait until ``n_parts`` part files exist while ``process`` still runs."""
+    end = time.monotonic() + timeout
+    while len(list(parts_dir.glob("part-*.npz"))) < n_parts:
+        assert process.poll() is None and time.monotonic() < end, "the run ended too early"
+        time.sleep(0.005)

@@ -7,7 +7,8 @@ import time
 
 import pytest
 import xarray as xr
-from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write_study
+from study_helpers import (PY, cli, cli_env, slow_study, wait_for_parts, without_run_attrs,
+                           write_study)
 
 import sweep
 from sweep.runner import store
@@ -42,7 +43,7 @@ def test_a_second_holder_is_refused_with_the_holders_name(tmp_path):
         holder.kill()
         holder.wait()
     # its holder is gone (killed, no clean-up): the lock is taken over
-    with OutputLock(out, command="second") as lock:
+    with OutputLock(out, command="second"):
         assert json.loads(lock_path(out).read_text())["pid"] == os.getpid()
         with pytest.raises(LockHeld):  # a second open file is a second holder, even here
             OutputLock(out).acquire()
@@ -64,26 +65,13 @@ def test_a_lock_released_while_another_waits_on_the_old_file_is_not_shared(tmp_p
     second.release()
 
 
-SLOW = {"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
-        "frequency": {"start": 6.0, "stop": 10.0, "num": 10}}
-
-
-def _slow_study(tmp_path, name="slow.yaml"):
-    raw = make_study(SLOW, output="r.nc")
-    raw["scene"]["solver"]["t_end"] = 6.0
-    return raw, write_study(tmp_path / name, raw)
-
-
 def test_two_runs_on_one_output_the_second_refused_the_first_intact(tmp_path):
-    raw, study = _slow_study(tmp_path)
+    raw, study = slow_study(tmp_path, 6.0)
     first = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "2"],
                              cwd=tmp_path, env=cli_env(), stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
     parts = store.parts_dir(tmp_path / "r.nc")
-    end = time.monotonic() + 120
-    while not list(parts.glob("part-*.npz")):
-        assert first.poll() is None and time.monotonic() < end, first.communicate()
-        time.sleep(0.005)
+    wait_for_parts(first, parts, 1)
     first.send_signal(signal.SIGSTOP)  # alive but paused, however fast this machine is
     try:
         # the study edited and relaunched with --force while the first runs: refused at once
@@ -108,15 +96,12 @@ def test_two_runs_on_one_output_the_second_refused_the_first_intact(tmp_path):
 
 
 def test_a_run_whose_predecessor_was_killed_takes_the_lock_over(tmp_path):
-    _, study = _slow_study(tmp_path)
+    _, study = slow_study(tmp_path, 6.0)
     first = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "4"],
                              cwd=tmp_path, env=cli_env(), stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL)
     parts = store.parts_dir(tmp_path / "r.nc")
-    end = time.monotonic() + 120
-    while not list(parts.glob("part-*.npz")):
-        assert first.poll() is None and time.monotonic() < end
-        time.sleep(0.01)
+    wait_for_parts(first, parts, 1)
     first.send_signal(signal.SIGKILL)
     first.wait()
     assert lock_path(tmp_path / "r.nc").exists()  # left behind by the killed holder

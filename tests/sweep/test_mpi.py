@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
-from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write_study
+from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
+                           without_run_attrs, write_study)
 
 from sweep.runner import store
 
@@ -58,18 +59,12 @@ def test_exception_on_one_rank_aborts_the_job(tmp_path):
 
 
 def test_terminated_job_resumes_on_one_rank(tmp_path):
-    raw = make_study({"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
-                      "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}, output="r.nc")
-    raw["scene"]["solver"]["t_end"] = 8.0
-    study = write_study(tmp_path / "slow.yaml", raw)
+    _, study = slow_study(tmp_path, 8.0)
     job = subprocess.Popen([MPIEXEC, "-n", "2", PY, "-m", "sweep.run", str(study),
                             "--chunk-size", "2"], cwd=tmp_path, env=cli_env(),
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     parts = store.parts_dir(tmp_path / "r.nc")
-    end = time.monotonic() + 120
-    while len(list(parts.glob("part-*.npz"))) < 10:
-        assert job.poll() is None and time.monotonic() < end, "the job ended too early"
-        time.sleep(0.005)
+    wait_for_parts(job, parts, 10)
     job.send_signal(signal.SIGTERM)
     job.wait(timeout=30)
     assert not (tmp_path / "r.nc").exists()
@@ -92,21 +87,11 @@ def test_launcher_library_mismatch(tmp_path, small_study):
 
 
 def _slow_job(tmp_path, *extra):
-    raw = make_study({"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
-                      "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}, output="r.nc")
-    raw["scene"]["solver"]["t_end"] = 20.0  # ~3 s on 2 ranks: stopped long before its end
-    study = write_study(tmp_path / "slow.yaml", raw)
+    _, study = slow_study(tmp_path, 20.0)  # ~3 s on 2 ranks: stopped long before its end
     job = subprocess.Popen([MPIEXEC, "-n", "2", PY, "-m", "sweep.run", str(study),
                             "--chunk-size", "2", *extra], cwd=tmp_path, env=cli_env(),
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     return study, job, store.parts_dir(tmp_path / "r.nc")
-
-
-def _wait_for_parts(job, parts, n, timeout=120):
-    end = time.monotonic() + timeout
-    while len(list(parts.glob("part-*.npz"))) < n:
-        assert job.poll() is None and time.monotonic() < end, "the job ended too early"
-        time.sleep(0.005)
 
 
 def _rank_pid(rank):
@@ -124,7 +109,7 @@ def _rank_pid(rank):
 
 def test_ctrl_c_under_mpiexec_saves_and_resumes(tmp_path):
     study, job, parts = _slow_job(tmp_path)
-    _wait_for_parts(job, parts, 6)
+    wait_for_parts(job, parts, 6)
     job.send_signal(signal.SIGINT)  # what Ctrl-C in the terminal does to mpiexec
     _, err = job.communicate(timeout=60)
     assert job.returncode == 130 and "Traceback" not in err, err
@@ -135,12 +120,13 @@ def test_ctrl_c_under_mpiexec_saves_and_resumes(tmp_path):
     resumed = cli([study], cwd=tmp_path)
     assert resumed.returncode == 0 and f"resuming: {saved} cells" in resumed.stderr
     reference = cli([study, "-o", "ref.nc"], cwd=tmp_path)
+    assert reference.returncode == 0, reference.stderr
     assert _open(tmp_path / "r.nc").identical(_open(tmp_path / "ref.nc"))
 
 
 def test_a_stopped_rank_is_detected_and_named(tmp_path):
     study, job, parts = _slow_job(tmp_path, "--rank-timeout", "2")
-    _wait_for_parts(job, parts, 4)
+    wait_for_parts(job, parts, 4)
     rank1 = _rank_pid(1)
     os.kill(rank1, signal.SIGSTOP)
     stopped = time.monotonic()

@@ -6,7 +6,8 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
-from study_helpers import PY, cli, cli_env, make_study, without_run_attrs, write_study
+from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
+                           without_run_attrs, write_study)
 
 import sweep
 from kernels import codes
@@ -57,11 +58,6 @@ def test_dry_run_counts_and_estimates(tmp_path, small_study):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]
 
 
-# 240 cells of a block rocking to the end of 8 s: a few seconds, killed long before the end
-SLOW = {"amplitude": {"start": 1.2, "stop": 2.0, "num": 12, "unit": "west"},
-        "frequency": {"start": 6.0, "stop": 10.0, "num": 20}}
-
-
 def _kill_when_parts(process, parts_dir, n_parts, signum, timeout=60.0):
     """Send ``signum`` to ``process`` once ``n_parts`` part files exist; the count then."""
     end = time.monotonic() + timeout
@@ -76,9 +72,7 @@ def _kill_when_parts(process, parts_dir, n_parts, signum, timeout=60.0):
 
 
 def test_sigkill_then_resume_gives_the_same_dataset(tmp_path):
-    raw = make_study(SLOW, output="r.nc")
-    raw["scene"]["solver"]["t_end"] = 8.0
-    study = write_study(tmp_path / "slow.yaml", raw)
+    _, study = slow_study(tmp_path, 8.0)
     process = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "1"],
                                cwd=tmp_path, env=cli_env(), stdout=subprocess.DEVNULL,
                                stderr=subprocess.PIPE)
@@ -96,22 +90,13 @@ def test_sigkill_then_resume_gives_the_same_dataset(tmp_path):
     assert without_run_attrs(a).identical(without_run_attrs(b))
 
 
-def _wait_for_parts(process, parts_dir, n_parts, timeout=120.0):
-    end = time.monotonic() + timeout
-    while len(list(parts_dir.glob("part-*.npz"))) < n_parts:
-        assert process.poll() is None and time.monotonic() < end, "the run ended too early"
-        time.sleep(0.005)
-
-
 def test_ctrl_c_says_what_is_saved_and_the_resume_is_exact(tmp_path):
-    raw = make_study(SLOW, output="r.nc")
-    raw["scene"]["solver"]["t_end"] = 12.0
-    study = write_study(tmp_path / "slow.yaml", raw)
+    _, study = slow_study(tmp_path, 12.0)
     process = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "2"],
                                cwd=tmp_path, env=cli_env(), stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     parts_dir = store.parts_dir(tmp_path / "r.nc")
-    _wait_for_parts(process, parts_dir, 5)
+    wait_for_parts(process, parts_dir, 5)
     process.send_signal(signal.SIGINT)
     _, err = process.communicate(timeout=60)
     assert process.returncode == 130 and "Traceback" not in err, err
@@ -194,9 +179,7 @@ def test_a_parts_folder_taken_by_a_file_is_refused(tmp_path, small_study):
 def test_kills_at_random_moments_resume_to_the_same_dataset(tmp_path):
     """SIGKILL at uniformly random moments of a run's life (start-up, cells, the final write,
     the clean-up), again and again until a run completes: always the reference dataset."""
-    raw = make_study(SLOW, output="ref.nc")
-    raw["scene"]["solver"]["t_end"] = 8.0
-    study = write_study(tmp_path / "slow.yaml", raw)
+    _, study = slow_study(tmp_path, 8.0, output="ref.nc")
     t0 = time.monotonic()
     assert cli([study, "--quiet"], cwd=tmp_path, timeout=240).returncode == 0
     whole = time.monotonic() - t0
