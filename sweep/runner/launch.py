@@ -21,7 +21,7 @@ from .. import cf
 from ..io.files import output_problem
 from ..io.problems import EXIT_BAD_INPUT, FileProblems, Problem
 from ..io.study_schema import load_study
-from . import grid, mpi, refine, store
+from . import fingerprint, grid, mpi, refine, store
 from .lock import LockHeld, OutputLock
 from .progress import Progress
 from .summary import dry_run, refine_summary, refine_text, say, shape_text, summary
@@ -70,7 +70,7 @@ def _open(study, args, parts):
         if removed and not args.quiet:
             say(f"sweep.run: removed what a killed run left: {', '.join(removed)}",
                 file=sys.stderr)
-        stamp = store.fingerprint.combined(store.fingerprint.components(study))
+        stamp = fingerprint.combined(fingerprint.components(study))
         if not args.force and store.finished_earlier(study.output, stamp):
             ours = parts.manifest_stamp() == stamp  # a run killed before its clean-up ended
             if ours:
@@ -213,7 +213,7 @@ class _State:
     study = plan = lock = None
 
 
-def _interrupted(state):
+def _interrupted(state, args):
     """Rank 0's one line after Ctrl-C: what is saved and how to resume."""
     plan = state.plan or {}
     if state.study is None or plan.get("exit", 0) is not None:
@@ -225,8 +225,8 @@ def _interrupted(state):
     else:
         saved = (f"{len(parts.done_cells())} of {state.study.n_cells} cells are saved in "
                  f"{parts.directory}")
-    say(f"sweep.run: interrupted: {saved}; run the same command again to resume",
-        file=sys.stderr)
+    say(f"sweep.run: interrupted: {saved}; run the same command again to resume "
+        f"({_command(args, None)})", file=sys.stderr)
 
 
 @contextmanager
@@ -251,7 +251,7 @@ def run(comm, args):
     except KeyboardInterrupt:
         if comm.Get_rank() == 0:
             with _sigint_ignored():  # a second Ctrl-C must not cut the line
-                _interrupted(state)
+                _interrupted(state, args)
         return EXIT_INTERRUPTED
     finally:
         if state.lock is not None:
