@@ -108,16 +108,13 @@ class PartStore:
                 "study": study.name}
         stale = None
         if manifest.exists():
-            try:
-                have = json.loads(manifest.read_text())
-            except (OSError, ValueError):
-                have = {}
-            have = have if isinstance(have, dict) else {}
+            have = self._manifest()
             if have.get("fingerprint") != self.stamp:
                 said = fingerprint.changes(have.get("components") or {}, parts)
                 stale = (f"{self.directory} holds the parts of other inputs "
                          f"({'; '.join(said) or 'an older version of the program'})")
-            elif foreign := [p.name for p in self.parts() if _stamp_of(p) != self.stamp]:
+            elif foreign := [p.name for p in self.parts()
+                             if _stamp_of(p) not in (self.stamp, None)]:
                 stale = (f"{self.directory} holds {len(foreign)} part files of other inputs "
                          f"than its {MANIFEST} states (first: {foreign[0]})")
         elif self.directory.exists() and any(self.directory.glob(PART_GLOB)):
@@ -134,12 +131,17 @@ class PartStore:
             write_atomic(manifest, lambda f: f.write(json.dumps(want, indent=1).encode()))
         return self.stamp
 
+    def _manifest(self):
+        """The manifest's content ({} when missing or unreadable)."""
+        try:
+            have = json.loads((self.directory / MANIFEST).read_text())
+        except (OSError, ValueError):
+            return {}
+        return have if isinstance(have, dict) else {}
+
     def manifest_stamp(self):
         """The fingerprint its manifest states, or None."""
-        try:
-            return json.loads((self.directory / MANIFEST).read_text()).get("fingerprint")
-        except (OSError, ValueError, AttributeError):
-            return None
+        return self._manifest().get("fingerprint")
 
     def parts(self):
         """Paths of the finished part files, sorted."""
@@ -192,12 +194,13 @@ class PartStore:
 
 
 def _stamp_of(path):
-    """The fingerprint a part file carries ('' when none or unreadable)."""
+    """The fingerprint a part file carries: '' when none, None when it cannot be read (such a
+    part is deleted by ``done_cells``, and its cells run again)."""
     try:
         with np.load(path, allow_pickle=False) as npz:
             return str(npz["fingerprint"]) if "fingerprint" in npz.files else ""
     except (OSError, ValueError, EOFError, zipfile.BadZipFile):
-        return ""
+        return None
 
 
 def merge(parts, n_cells):

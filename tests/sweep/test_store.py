@@ -139,3 +139,18 @@ def test_outcomes_follow_the_kernel(study, whole):
     # a sine at constant amplitude: the normalized acceleration at overturning is the level
     amplitude = np.array([grid.cell_coords(study, i)["amplitude"] for i in range(study.n_cells)])
     np.testing.assert_allclose(whole["a_norm_at_overturn"][over], amplitude[over], rtol=1e-9)
+
+
+def test_a_part_of_other_inputs_is_never_merged(study, whole, tmp_path):
+    parts = store.PartStore(tmp_path / "p")
+    parts.prepare(study)
+    parts.write_part({k: v[:6] for k, v in whole.items()})
+    foreign = store.PartStore(parts.directory, stamp="0" * 64)  # a writer of other inputs
+    foreign.write_part({k: v[6:] for k, v in whole.items()})
+    with pytest.raises(store.StoreError, match="part-000000006.npz was computed from other"):
+        parts.merge(study.n_cells)
+    with pytest.raises(store.StoreError, match="1 part files of other inputs"):
+        store.PartStore(parts.directory).prepare(study)
+    (parts.directory / "part-000000006.npz").write_bytes(b"not a zip")  # a failing disk
+    assert store.PartStore(parts.directory).prepare(study) == parts.stamp  # runs again
+    np.testing.assert_array_equal(parts.done_cells(), np.arange(6))
