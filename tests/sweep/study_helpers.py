@@ -68,3 +68,9 @@ def wait_for_parts(process, parts_dir, n_parts, timeout=120.0):
     while len(list(parts_dir.glob("part-*.npz"))) < n_parts:
         assert process.poll() is None and time.monotonic() < end, "the run ended too early"
         time.sleep(0.005)
+
+
+def start(args, cwd, module="sweep.run"):
+    """``python -m <module> args`` started in ``cwd`` (pipes for its output): the Popen."""
+    return subprocess.Popen([PY, "-m", module, *map(str, args)], cwd=cwd, env=cli_env(),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

@@ -7,8 +7,8 @@ import time
 
 import pytest
 import xarray as xr
-from study_helpers import (PY, cli, cli_env, slow_study, wait_for_parts, without_run_attrs,
-                           write_study)
+from study_helpers import (PY, cli, cli_env, slow_study, start, wait_for_parts,
+                           without_run_attrs, write_study)
 
 import sweep
 from sweep.runner import store
@@ -67,9 +67,7 @@ def test_a_lock_released_while_another_waits_on_the_old_file_is_not_shared(tmp_p
 
 def test_two_runs_on_one_output_the_second_refused_the_first_intact(tmp_path):
     raw, study = slow_study(tmp_path, 6.0)
-    first = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "2"],
-                             cwd=tmp_path, env=cli_env(), stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
+    first = start([study, "--chunk-size", "2"], tmp_path)
     parts = store.parts_dir(tmp_path / "r.nc")
     wait_for_parts(first, parts, 1)
     first.send_signal(signal.SIGSTOP)  # alive but paused, however fast this machine is
@@ -97,9 +95,7 @@ def test_two_runs_on_one_output_the_second_refused_the_first_intact(tmp_path):
 
 def test_a_run_whose_predecessor_was_killed_takes_the_lock_over(tmp_path):
     _, study = slow_study(tmp_path, 6.0)
-    first = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "4"],
-                             cwd=tmp_path, env=cli_env(), stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
+    first = start([study, "--chunk-size", "4"], tmp_path)
     parts = store.parts_dir(tmp_path / "r.nc")
     wait_for_parts(first, parts, 1)
     first.send_signal(signal.SIGKILL)

@@ -6,7 +6,7 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
-from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
+from study_helpers import (PY, cli, cli_env, make_study, slow_study, start, wait_for_parts,
                            without_run_attrs, write_study)
 
 import sweep
@@ -92,9 +92,7 @@ def test_sigkill_then_resume_gives_the_same_dataset(tmp_path):
 
 def test_ctrl_c_says_what_is_saved_and_the_resume_is_exact(tmp_path):
     _, study = slow_study(tmp_path, 12.0)
-    process = subprocess.Popen([PY, "-m", "sweep.run", str(study), "--chunk-size", "2"],
-                               cwd=tmp_path, env=cli_env(), stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
+    process = start([study, "--chunk-size", "2"], tmp_path)
     parts_dir = store.parts_dir(tmp_path / "r.nc")
     wait_for_parts(process, parts_dir, 5)
     process.send_signal(signal.SIGINT)
@@ -102,10 +100,11 @@ def test_ctrl_c_says_what_is_saved_and_the_resume_is_exact(tmp_path):
     assert process.returncode == 130 and "Traceback" not in err, err
     saved = 2 * len(list(parts_dir.glob("part-*.npz")))
     assert f"interrupted: {saved} of 240 cells are saved in {parts_dir.name}" in err
-    assert "run the same command again to resume" in err
+    assert f"run the same command again to resume (python -m sweep.run {study}" in err
     resumed = cli([study], cwd=tmp_path, timeout=240)
     assert resumed.returncode == 0 and f"resuming: {saved} cells" in resumed.stderr
     reference = cli([study, "-o", "ref.nc"], cwd=tmp_path, timeout=240)
+    assert reference.returncode == 0, reference.stderr
     a, b = xr.open_dataset(tmp_path / "r.nc"), xr.open_dataset(tmp_path / "ref.nc")
     assert without_run_attrs(a).identical(without_run_attrs(b))
 
