@@ -15,9 +15,9 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
-from .markdown import write_text
+from .markdown import table, write_text
 
-SECTIONS = ("work_precision", "throughput", "stability", "refine")
+SECTIONS = ("startup", "work_precision", "throughput", "stability", "refine")
 OUTPUT = Path("results/bench.md")
 FIGURE = Path("figures/bench_work_precision.png")
 
@@ -58,18 +58,22 @@ def main(argv=None):
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     load_start = os.getloadavg()[0]
-    parts, names = [], []
+    parts, names, targets = [], [], []
     for name in SECTIONS:
         if importlib.util.find_spec(f"{__package__}.{name}") is None:
             continue
         print(f"benchmarks: {name} ...", file=sys.stderr, flush=True)
         module = importlib.import_module(f"{__package__}.{name}")
-        parts.append(module.section(args.quick, figure=args.figure) if name == "work_precision"
-                     else module.section(args.quick))
+        part = (module.section(args.quick, figure=args.figure) if name == "work_precision"
+                else module.section(args.quick))
+        parts.append(part.text)
+        targets += part.targets
         names.append(name)
     header = _header(args.quick, args.figure, args.output, time.perf_counter() - t0,
                      load_start, os.getloadavg()[0], names)
-    write_text(args.output, header + "\n" + "\n\n".join(p.rstrip() for p in parts) + "\n")
+    summary = "\n".join(["## Targets, side by side", "",
+                         table(["target (DESIGN 10)", "measured", "met"], targets), ""])
+    write_text(args.output, "\n".join([header, summary, *(p.rstrip() + "\n" for p in parts)]))
     print(f"wrote {args.output} and {args.figure}", file=sys.stderr)
     return 0
 

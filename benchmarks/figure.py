@@ -3,8 +3,10 @@ import math
 
 from matplotlib.figure import Figure
 
-STYLE = {"adaptive": dict(color="tab:blue", marker="o", label="kernel, adaptive DP5 (rtol)"),
+STYLE = {"adaptive": dict(color="tab:blue", marker="o", label="kernel, adaptive (rtol)"),
          "fixed": dict(color="tab:orange", marker="s", label="kernel, fixed-step RK4 (dt)"),
+         "floor": dict(color="tab:purple", marker="v",
+                       label="floor: the kernel's tableau, rocking only (rtol)"),
          "scipy": dict(color="tab:green", marker="^",
                        label="scipy solve_ivp DOP853, rocking only (rtol)")}
 
@@ -17,7 +19,7 @@ def _annotate(ax, points, method):
                     fontsize=7, color=STYLE[method]["color"])
 
 
-def work_precision_figure(all_curves, target_error=1e-8, target_cpu=1e-3):
+def work_precision_figure(all_curves, target_error, target_cpu):
     """A Figure with one log-log panel per scene: error against median CPU time [ms].
 
     Runs whose error is not finite (wrong impact count, missed overturning) are left out and
@@ -56,6 +58,6 @@ def work_precision_figure(all_curves, target_error=1e-8, target_cpu=1e-3):
     for ax in axes[n:]:
         ax.set_visible(False)
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncols=3, fontsize=9)
+    fig.legend(handles, labels, loc="outside lower center", ncols=2, fontsize=9)
     fig.suptitle("Work-precision: error against CPU time (median of repeated runs)")
     return fig

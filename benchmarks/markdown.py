@@ -1,7 +1,13 @@
 """Markdown tables and number formats of the benchmark report, and atomic file writing."""
 import math
+from collections import namedtuple
 
 from sweep.io.files import write_atomic
+
+
+Section = namedtuple("Section", "text targets")
+Section.__doc__ = """What a benchmark section gives: its Markdown ``text`` and its ``targets``,
+rows (target, measured, met) that the report also gathers in one table at its top."""
 
 
 def table(header, rows):

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 import sweep
-from benchmarks.markdown import table, verdict
+from benchmarks.markdown import Section, table, verdict
 from sweep.paper import criteria
 from sweep.runner.cells import warm_up
 
@@ -166,7 +166,7 @@ def section(quick):
              "transition (`coarse_transitions` in its dataset counts the bands the coarse "
              "values see).  Rounds run one after the other and each has one cell per open "
              "line, which bounds how many ranks a round can keep busy.", ""]
-    return "\n".join(text)
+    return Section("\n".join(text), [])
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@ from kernels import codes
 from kernels.api import run_scene
 
 from tests import hard_cases as hc
-from .markdown import ms, sci, table
+from .markdown import Section, ms, sci, table
 from .references import zeno_time
 
 EXCESSES = (1e-9, 1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 2e-2, 3e-2, 5e-2)
@@ -172,7 +172,7 @@ def section(quick):
     parts = [zeno_table, grazing_table, stick_slip_table, painleve_table, bouncing_table,
              ensemble_table]
     run_scene(hc.resolved(hc.near_threshold(0.5, hc.HOUSNER)))   # compile (or load) first
-    return "\n\n".join(["## Stability on hard cases",
-                        "Asserted by `tests/kernels/test_stability.py`; measured here over wider "
-                        "ranges. CPU of single runs (the compiled call).",
-                        *[part(quick) for part in parts]]) + "\n"
+    return Section("\n\n".join(["## Stability on hard cases",
+                                 "Asserted by `tests/kernels/test_stability.py`; measured here "
+                                 "over wider ranges. CPU of single runs (the compiled call).",
+                                 *[part(quick) for part in parts]]) + "\n", [])

@@ -20,7 +20,7 @@ import yaml
 
 from kernels import api, codes
 
-from .markdown import ms, table, verdict
+from .markdown import Section, ms, table, verdict
 
 STUDY = Path(__file__).with_name("sweep_map.yaml")
 TARGET_CELL_CPU = 5e-3      # s per 60 s sweep cell (DESIGN 10)
@@ -176,10 +176,11 @@ def section(quick):
         if chosen.size:
             per_outcome.append([name, chosen.size, ms(chosen.mean()), ms(np.median(chosen)),
                                 ms(chosen.max())])
+    rows = targets(m)
     same = "" if m["identical"] is None else (
         f"\nThe datasets of 1 and 2 ranks are {'identical' if m['identical'] else 'NOT identical'}"
         " (coordinates and data; `Dataset.equals`).")
-    return "\n".join([
+    return Section("\n".join([
         "## Throughput (a map of 60 s sweeps)", "",
         f"`benchmarks/sweep_map.yaml`{' reduced to two values per axis' if quick else ''}: "
         f"{n} cells. Kernel CPU per cell timed in one process after compilation; "
@@ -188,10 +189,10 @@ def section(quick):
         "sweep.run` (2 ranks), start-up, merge and netCDF writing included; the CPU time of "
         "their processes shows how much of the wall time went to other work on the machine. "
         "The one-cell study (first value of every axis) measures the start-up.", "",
-        table(["target (DESIGN 10)", "measured", "met"], targets(m)), "",
+        table(["target (DESIGN 10)", "measured", "met"], rows), "",
         table(["cells", "count", "kernel CPU mean [ms]", "median [ms]", "max [ms]"],
               [["all", n, ms(cpu.mean()), ms(np.median(cpu)), ms(cpu.max())],
                *per_outcome]), "",
         table(["study", "ranks", "wall [s]", "CPU of its processes [s]", "cells/s per core",
                "speed-up"], _run_rows(m)),
-        same, ""])
+        same, ""]), rows)
