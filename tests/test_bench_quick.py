@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import hard_cases
-from benchmarks import scenes, throughput, work_precision
+from benchmarks import floor, scenes, throughput, work_precision
 from kernels.api import run_scene
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -98,3 +98,18 @@ def test_quick_benchmark_run(tmp_path):
         assert heading in text
     assert "datasets identical" in text
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_floor_loop_meets_the_free_rocking_anchor_and_the_kernel():
+    """The floor (the kernel's tableau, rocking only) against PHYSICS A4's quadrature on free
+    rocking, and against the kernel's impact times on steady rocking (Housner's impact)."""
+    free = next(s for s in scenes.SCENES if s.key == "free_rocking")
+    out = floor.run(free.resolved, 1e-10, 1e-12)
+    assert scenes.error(scenes.Outcome.of_scipy(out), free.anchor(), free)[0] < 1e-9
+    steady = next(s for s in scenes.SCENES if s.key == "steady_rocking")
+    kernel = run_scene({**steady.resolved, "solver": {**steady.resolved["solver"],
+                                                      "rtol": 1e-12, "atol": 1e-14}})
+    out = floor.run(steady.resolved, 1e-10, 1e-12)
+    assert len(out["impact_times"]) == len(kernel.impact_times) == 79
+    np.testing.assert_allclose(out["impact_times"], kernel.impact_times, rtol=0, atol=1e-9)
+    assert not floor.takes(next(s for s in scenes.SCENES if s.key == "sweep").resolved)
