@@ -61,9 +61,16 @@ def draw_scene(ds, title=""):
     return fig
 
 
-def animate_scene(ds, path, title=""):
-    """GIF of the body on the moving floor, in real time (one frame per history sample)."""
-    from matplotlib.animation import FuncAnimation, PillowWriter
+def animate_scene(ds, path, title="", quiet=False):
+    """GIF of the body on the moving floor, in real time (one frame per history sample).
+
+    The axes are drawn once; each frame redraws only the body, the floor, the title and the
+    spines above them (as a full drawing stacks them) over that background, and the frames go
+    to the GIF as they are drawn (``gif.save_gif``), with a progress line on stderr unless
+    ``quiet``.
+    """
+    from ..runner.progress import Progress
+    from .gif import save_gif
     b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
     t = ds["time"].values
     dt = float(t[1] - t[0]) if t.size > 1 else 0.02
@@ -71,6 +78,7 @@ def animate_scene(ds, path, title=""):
     v_floor = np.concatenate([[0.0], np.cumsum(0.5 * (ds.a_x.values[1:] + ds.a_x.values[:-1]) * dt)])
     d_floor = np.concatenate([[0.0], np.cumsum(0.5 * (v_floor[1:] + v_floor[:-1]) * dt)])
     x_abs = d_floor + ds.x.values
+    y, theta, mode = ds.y.values, ds.theta.values, ds["mode"].values
     span = max(np.ptp(x_abs) + 4 * b, 3 * h)
     centre = 0.5 * (x_abs.max() + x_abs.min())
     fig, ax = plt.subplots(figsize=(5, 5))
@@ -81,14 +89,25 @@ def animate_scene(ds, path, title=""):
     (floor,) = ax.plot([], [], color="k", lw=3)
     (body,) = ax.plot([], [], color="tab:blue", lw=2)
     label = ax.set_title(title)
+    moving = [floor, body, *ax.spines.values(), label]  # in the order a full drawing uses
+    for artist in moving:
+        artist.set_animated(True)
+    canvas = fig.canvas
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    progress = Progress(t.size, quiet=quiet, prefix=f"animating {path}", unit="frame")
 
     def frame(k):
-        px, py = outline(x_abs[k], ds.y.values[k], ds.theta.values[k], b, h)
+        px, py = outline(x_abs[k], y[k], theta[k], b, h)
         body.set_data(px * 100, py * 100)
         floor.set_data([(d_floor[k] - span) * 100, (d_floor[k] + span) * 100], [0, 0])
-        label.set_text(f"{title}  t = {t[k]:.2f} s  {MODE_NAMES[int(ds['mode'].values[k])]}")
-        return body, floor, label
+        label.set_text(f"{title}  t = {t[k]:.2f} s  {MODE_NAMES[int(mode[k])]}")
+        canvas.restore_region(background)
+        for artist in moving:
+            fig.draw_artist(artist)
+        progress.update(1)
+        return np.asarray(canvas.buffer_rgba())
 
-    anim = FuncAnimation(fig, frame, frames=t.size, blit=False)
-    anim.save(path, writer=PillowWriter(fps=max(1, round(1 / dt))))
+    save_gif(path, (frame(k) for k in range(t.size)), fps=max(1, round(1 / dt)))
+    progress.close()
     plt.close(fig)

@@ -34,7 +34,8 @@ def format_seconds(s):
 
 
 class Progress:
-    """Cells done out of ``total``; ``initial`` were done by an earlier run (resume).
+    """Cells (or other ``unit``s) done out of ``total``; ``initial`` were done by an earlier
+    run (resume).
 
     Parameters
     ----------
@@ -44,13 +45,16 @@ class Progress:
     stream : file, default sys.stderr
     prefix : str
         Start of log lines.
+    unit : str
+        What is counted.
     """
 
-    def __init__(self, total, initial=0, quiet=False, stream=None, prefix="sweep.run"):
+    def __init__(self, total, initial=0, quiet=False, stream=None, prefix="sweep.run",
+                 unit="cell"):
         self.total, self.done, self.failed = total, initial, 0
         self.initial = initial
         self.stream = sys.stderr if stream is None else stream
-        self.prefix = prefix
+        self.prefix, self.unit = prefix, unit
         self.start = time.perf_counter()
         self._bar = None
         self._last_time, self._last_done = self.start, initial
@@ -59,7 +63,7 @@ class Progress:
         elif self.stream.isatty() and not os.environ.get("CI"):
             from tqdm import tqdm
             self.mode = "bar"
-            self._bar = tqdm(total=total, initial=initial, unit="cell", file=self.stream,
+            self._bar = tqdm(total=total, initial=initial, unit=unit, file=self.stream,
                              dynamic_ncols=True, smoothing=0.1)
         else:
             self.mode = "log"
@@ -86,9 +90,10 @@ class Progress:
 
     def _log(self, now):
         eta = self.eta(now)
-        text = (f"{self.prefix}: {self.done}/{self.total} cells "
-                f"({100 * self.done / max(self.total, 1):.0f}%), {self.failed} failed, "
-                f"{format_seconds(now - self.start)} elapsed"
+        text = (f"{self.prefix}: {self.done}/{self.total} {self.unit}s "
+                f"({100 * self.done / max(self.total, 1):.0f}%), "
+                + (f"{self.failed} failed, " if self.unit == "cell" or self.failed else "")
+                + f"{format_seconds(now - self.start)} elapsed"
                 + (f", ETA {format_seconds(eta)}" if eta is not None and self.done < self.total
                    else ""))
         emit(text, self.stream)
