@@ -27,15 +27,15 @@ from .plots.style import save_figure
 from .plots.sweeps import figure_boundaries, figure_plane
 
 
-def boundaries(datasets, label=None):
-    """Fig. 11: the overturnings of sweep datasets classified, then drawn by kind."""
-    return figure_boundaries(datasets, [classify.classify_dataset(ds) for ds in datasets],
-                             label=label)
+def boundaries(datasets, label=None, known=None):
+    """Fig. 11: the overturnings of sweep datasets classified, then drawn by kind
+    (``known``: classifications already made, see ``classify.classifications``)."""
+    return figure_boundaries(datasets, classify.classifications(datasets, known), label=label)
 
 
-def histories(datasets, figure):
+def histories(datasets, figure, known=None):
     """Figs 12-16: the overturning of each panel's kind found with its history, then drawn."""
-    return figure_history(classify.figure_overturnings(datasets, figure), figure)
+    return figure_history(classify.figure_overturnings(datasets, figure, known), figure)
 
 
 FIGURES = {
@@ -56,6 +56,15 @@ FIGURES = {
 }
 WITHOUT_DATASET = {"fig17"}  # drawn from sweep.paper.criteria alone
 SEVERAL = {f"fig{k:02d}" for k in range(8, 17)}  # drawn from a list of sweep datasets
+CLASSIFIED = {f"fig{k}" for k in range(11, 17)}  # take ``known=`` classifications (Figs 11-16)
+
+
+def draw(figure, datasets, **options):
+    """The matplotlib Figure ``figure`` from its datasets: none (``WITHOUT_DATASET``), the
+    list (``SEVERAL``) or the first."""
+    if figure in WITHOUT_DATASET:
+        return FIGURES[figure](**options)
+    return FIGURES[figure](datasets if figure in SEVERAL else datasets[0], **options)
 
 
 @command
@@ -83,7 +92,7 @@ def main(argv=None):
         print(FileProblems(unusable), file=sys.stderr)
         return EXIT_BAD_INPUT
     if not args.result:
-        return _save(FIGURES[args.figure](), args.output)
+        return _save(draw(args.figure, []), args.output)
 
     import xarray as xr
 
@@ -97,8 +106,7 @@ def main(argv=None):
                 print(f"{path}: cannot open as a netCDF dataset: {err}", file=sys.stderr)
                 return EXIT_BAD_INPUT
         try:
-            fig = FIGURES[args.figure](datasets if args.figure in SEVERAL else datasets[0],
-                                       **options)
+            fig = draw(args.figure, datasets, **options)
         except (KeyError, ValueError) as err:
             print(f"{' '.join(args.result)}: cannot draw '{args.figure}': {err}",
                   file=sys.stderr)

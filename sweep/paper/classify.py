@@ -260,6 +260,19 @@ def classify_dataset(ds, cells=None):
     return found
 
 
+def dataset_key(ds):
+    """What the classification of a dataset's cells depends on: the study it was run from."""
+    return ds.attrs.get("study_file"), ds.attrs["study"]
+
+
+def classifications(datasets, known=None):
+    """``classify_dataset`` of each dataset, taken from ``known`` ({``dataset_key``: its
+    classification}) where it is there."""
+    known = known or {}
+    return [known[dataset_key(ds)] if dataset_key(ds) in known else classify_dataset(ds)
+            for ds in datasets]
+
+
 # --- the histories of Figs 12-16 -----------------------------------------------------------
 
 Panel = namedtuple("Panel", "kind holds steady title")
@@ -293,9 +306,14 @@ def _distance_to_p(ds, cells):
     return np.hypot(np.log(v / POINT_P[0]), np.log(a / POINT_P[1]))
 
 
-def find_overturning(datasets, panel):
+def find_overturning(datasets, panel, known=None):
     """The overturning of ``panel.kind`` nearest to P among the sweeps holding one of
-    ``panel.holds`` (a ``Found``, or None), and the number of overturnings examined."""
+    ``panel.holds`` (a ``Found``, or None), and the number of overturnings examined.
+
+    A candidate of a dataset in ``known`` ({``dataset_key``: ``classify_dataset``}) is not
+    simulated again to be classified; only the overturning found is, for its history.
+    """
+    known = known or {}
     candidates = []
     for k, ds in enumerate(datasets):
         study = study_of(ds)
@@ -304,16 +322,20 @@ def find_overturning(datasets, panel):
         cells = overturned_cells(ds)
         candidates += [(d, k, int(i), study) for d, i in zip(_distance_to_p(ds, cells), cells)]
     for examined, (_, k, index, study) in enumerate(sorted(candidates, key=lambda c: c[:3])):
-        result = simulate_cell(study, index)
-        rocking = classify_result(result)
+        classified = known.get(dataset_key(datasets[k]))
+        result = None if classified is not None else simulate_cell(study, index)
+        rocking = classify_result(result) if classified is None else classified.get(index)
         steady = rocking is not None and not np.isnan(rocking.period_ratio)
         if rocking is not None and rocking.kind == panel.kind and (steady or not panel.steady):
+            if result is None:
+                result = simulate_cell(study, index)
             return Found(datasets[k], study, index, grid.cell_values(study, index), result,
                          rocking), examined + 1
     return None, len(candidates)
 
 
-def figure_overturnings(datasets, figure):
+def figure_overturnings(datasets, figure, known=None):
     """The overturning of each panel of ``figure`` (a key of ``FIGURE_PANELS``): a list of
-    ``(Found or None, overturnings examined)``, one per panel."""
-    return [find_overturning(datasets, panel) for panel in FIGURE_PANELS[figure][1]]
+    ``(Found or None, overturnings examined)``, one per panel (``known`` as for
+    :func:`find_overturning`)."""
+    return [find_overturning(datasets, panel, known) for panel in FIGURE_PANELS[figure][1]]

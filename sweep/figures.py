@@ -1,0 +1,198 @@
+"""``python -m sweep.figures``: the paper's figures from our own simulations, in one job.
+
+    mpiexec -n 2 python -m sweep.figures [-o FIGURES]
+
+The ranks stay together from the first figure to the last, so start-up, imports and the
+kernel load are paid once: they draw the scenes of Figs 3-5 (``studies/fig0[345]*.yaml``,
+into ``FIGURES/scenes``), run every study of ``PLAN`` one after the other (``sweep.run``, so
+each dataset is the one ``python -m sweep.run STUDY --force`` writes into ``results/``),
+classify the overturnings of the sweeps of Fig. 11 once for Figs 11-16
+(``sweep.paper.classify``), and draw the figures (``sweep.plot``).  Scenes, classifications
+and figures are shared out among the ranks.  A line per stage on stderr says how long it took.
+"""
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from .cli import command
+from .io.problems import EXIT_BAD_INPUT
+from .runner import mpi
+from .runner.progress import emit, format_seconds
+
+STUDIES = Path("studies")
+SCENES = "fig0[345]*.yaml"  # the scenes of Figs 3-5
+KINDS = ("acceleration", "velocity", "displacement")  # the sweeps of Figs 8-10
+# output name -> (figure of sweep.plot, the studies whose datasets it draws), in drawing order
+PLAN = {
+    **{f"fig{n}": (f"fig{n}", tuple(f"fig{n}_{kind}" for kind in KINDS))
+       for n in ("08", "09", "10")},
+    **{f"fig09_{s}": ("fig09", (f"fig09_{s}",))
+       for s in ("variants_acceleration", "variants_velocity", "bodies_acceleration",
+                 "bodies_velocity", "rate_acceleration", "rate_velocity")},
+    "fig11": ("fig11", (*(f"fig{n}_{kind}" for n in ("08", "09") for kind in KINDS),
+                        "fig10_acceleration")),
+    "fig12": ("fig12", ("fig08_acceleration", *(f"fig09_{kind}" for kind in KINDS))),
+    "fig13": ("fig13", ("fig09_acceleration",)),
+    "fig14": ("fig14", ("fig08_acceleration", "fig09_acceleration")),
+    "fig15": ("fig15", ("fig09_velocity",)),
+    "fig16": ("fig16", ("fig09_displacement",)),
+    "fig17": ("fig17", ()),
+    "fig18": ("fig18", ("fig18_elcentro_ns",)),
+    "fig19": ("fig19", ("fig19_taft_ew",)),
+    "fig20": ("fig20", ("fig20_elcentro_ew",)),
+    "fig21": ("fig21", ("fig21_summary",)),
+}
+CLASSIFIED = PLAN["fig11"][1]  # the sweeps whose overturnings Figs 11-16 classify
+
+
+def studies():
+    """The studies of ``PLAN``, each once, in order of first use."""
+    return list(dict.fromkeys(name for _, names in PLAN.values() for name in names))
+
+
+def share(tasks, size, cost=None):
+    """Tasks dealt to ``size`` ranks: the costliest first, each to the least loaded rank
+    (round-robin without ``cost``); a list of ``size`` lists, in the tasks' order."""
+    if cost is None:
+        return [tasks[rank::size] for rank in range(size)]
+    load, dealt = [0.0] * size, [[] for _ in range(size)]
+    for k in sorted(range(len(tasks)), key=lambda k: -cost[k]):
+        rank = load.index(min(load))
+        load[rank] += cost[k]
+        dealt[rank].append(k)
+    return [[tasks[k] for k in sorted(ks)] for ks in dealt]
+
+
+class _Stages:
+    """Rank 0's line per stage: its name, what it did and the seconds it took."""
+
+    def __init__(self, comm):
+        self.comm, self.start = comm, time.perf_counter()
+        self.last = self.start
+
+    def done(self, what):
+        now = time.perf_counter()
+        if self.comm.Get_rank() == 0:
+            emit(f"sweep.figures: {what} in {format_seconds(now - self.last)}", sys.stderr)
+        self.last = now
+
+    def total(self, output):
+        self.done(f"wrote {len(PLAN)} figures into {output} (all stages: "
+                  f"{format_seconds(time.perf_counter() - self.start)})")
+
+
+def draw_scenes(comm, output):
+    """This rank's share of the scenes of Figs 3-5, drawn as ``python -m sweep.scene SCENE
+    --plot`` draws them; returns how many scenes there are."""
+    import matplotlib.pyplot as plt
+
+    from .plots.scene import draw_scene
+    from .plots.style import save_figure
+    from .runner.simulate import simulate
+
+    paths = sorted(STUDIES.glob(SCENES))
+    (output / "scenes").mkdir(parents=True, exist_ok=True)
+    for path in share(paths, comm.Get_size())[comm.Get_rank()]:
+        result = simulate(path, history=True)
+        fig = draw_scene(result.history, f"{path}: {result.status}")
+        save_figure(fig, output / "scenes" / f"{path.stem}.png", dpi=110)
+        plt.close(fig)
+    return len(paths)
+
+
+def run_studies(names):
+    """Every study on every rank, one after the other; the first nonzero exit status, or 0."""
+    from .run import main as run
+
+    for name in names:
+        status = run([str(STUDIES / f"{name}.yaml"), "--force", "--quiet"])
+        if status:
+            return status
+    return 0
+
+
+def classify(comm, datasets):
+    """{``classify.dataset_key``: its classification} of the sweeps ``CLASSIFIED``, every
+    overturned cell simulated again once, the cells shared out by the time they ran."""
+    from .paper import classify
+
+    tasks = [(name, int(cell)) for name in CLASSIFIED
+             for cell in classify.overturned_cells(datasets[name])]
+    cost = [float(datasets[name]["t_overturn"].values.ravel()[cell]) for name, cell in tasks]
+    mine = share(tasks, comm.Get_size(), cost)[comm.Get_rank()]
+    found = {}
+    for name in CLASSIFIED:
+        cells = [cell for of, cell in mine if of == name]
+        found[name] = classify.classify_dataset(datasets[name], cells)
+    known = {}
+    for name in CLASSIFIED:
+        key = classify.dataset_key(datasets[name])
+        known[key] = {cell: rocking for part in mpi.allgather(comm, found[name])
+                      for cell, rocking in part.items()}
+    return known, len(tasks)
+
+
+def draw_figures(comm, datasets, known, output):
+    """This rank's share of the figures of ``PLAN``."""
+    import matplotlib.pyplot as plt
+
+    from . import plot
+    from .plots.style import save_figure
+
+    for name in share(list(PLAN), comm.Get_size())[comm.Get_rank()]:
+        figure, names = PLAN[name]
+        options = {"known": known} if figure in plot.CLASSIFIED else {}
+        fig = plot.draw(figure, [datasets[n] for n in names], **options)
+        save_figure(fig, output / f"{name}.png")
+        plt.close(fig)
+
+
+def open_datasets(names):
+    """{study: its dataset}, opened from the study's output."""
+    import xarray as xr
+
+    from .io.study_schema import load_study
+
+    return {name: xr.open_dataset(load_study(STUDIES / f"{name}.yaml", check_cells=False)
+                                  .output) for name in names}
+
+
+@command
+def main(argv=None):
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
+    parser = argparse.ArgumentParser(prog="python -m sweep.figures", description=__doc__)
+    parser.add_argument("-o", "--output", default="figures", help="folder of the figures")
+    args = parser.parse_args(argv)
+    output = Path(args.output)
+    try:
+        comm = mpi.world()
+    except mpi.LauncherMismatch as err:
+        if mpi.first_process():
+            print(f"sweep.figures: error: {err}", file=sys.stderr, flush=True)
+        return EXIT_BAD_INPUT
+    with mpi.abort_on_exception(comm):
+        stages = _Stages(comm)
+        n = draw_scenes(comm, output)
+        mpi.barrier(comm)
+        stages.done(f"{n} scenes of Figs 3-5 drawn")
+        names = studies()
+        status = run_studies(names)
+        if status:
+            return status
+        stages.done(f"{len(names)} studies run")
+        datasets = open_datasets(names)
+        known, n = classify(comm, datasets)
+        stages.done(f"{n} overturnings classified")
+        draw_figures(comm, datasets, known, output)
+        for ds in datasets.values():
+            ds.close()
+        mpi.barrier(comm)
+        stages.total(output)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
