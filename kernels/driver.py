@@ -34,7 +34,7 @@ from .history import hold, sample_step
 from .integrate import FIRST_STEP, next_step_size, step
 from .motion import from_full, n_dof, rhs, to_full
 from .rest_skipping import rest_exit, rest_threshold
-from .state import Step, new_work, scene_of
+from .state import Step, borrowed, new_work, scene_of
 from .tableaus import tableau
 from .tolerances import (BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, RETRY_SHRINK,
                          THRESHOLD_NUDGE)
@@ -117,6 +117,7 @@ def run_scene(row, rec, res, log, hist, ctl):
     PHYSICS.md sections 1-3; DESIGN.md section 3.
     """
     scene = scene_of(row)
+    rec = borrowed(rec)               # passed to every right-hand side: count no references
     body, contact, floor, solver, _ = scene
     method = int(solver.method)
     adaptive = method == ADAPTIVE     # the step size is controlled

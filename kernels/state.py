@@ -17,6 +17,9 @@ b and h are the half-breadth and half-height (PHYSICS.md 1.1).
 from collections import namedtuple
 
 import numpy as np
+from numba.core import cgutils
+from numba.extending import intrinsic
+from numba.np.arrayobj import make_array
 
 from ._jit import DISABLED, jit
 from .codes import N_CTX, N_MODES, N_STATE
@@ -78,6 +81,20 @@ def scene_of(row):
     return Scene(Body(b, h, row.body.i2), contact, row.floor, row.solver, row.initial)
 
 
+@intrinsic
+def borrowed(typingctx, array):
+    """borrowed(a): a view of the array a without its memory record, so that compiled code
+    passing it on counts no references (each count is an atomic operation, and the floor's
+    record buffer ``rec`` goes to every right-hand side and event function).  The caller
+    keeps a alive while the view is used."""
+    def codegen(context, builder, signature, args):
+        view = make_array(array)(context, builder, args[0])
+        view.meminfo = cgutils.get_null_value(view.meminfo.type)
+        view.parent = cgutils.get_null_value(view.parent.type)
+        return view._getvalue()
+    return array(array), codegen
+
+
 @jit
 def new_work():
     """The buffers of one scene, zeroed: a one-element array of ``WORK_DTYPE`` (keep it while
@@ -86,6 +103,10 @@ def new_work():
 
 
 if DISABLED:
+    def borrowed(array):    # noqa: F811 -- plain Python counts no references
+        """The array itself (plain Python)."""
+        return array
+
     def new_work():         # noqa: F811 -- plain Python reads fields by name through recarray
         """The buffers of one scene, zeroed (plain Python)."""
         return np.zeros(1, WORK_DTYPE).view(np.recarray)
