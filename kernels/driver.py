@@ -31,7 +31,7 @@ from .events import event_values, n_events
 from .extremes import MAX_LIFT, MAX_SLIP, MAX_THETA, observe, observe_turns
 from .ground import G, amplitudes, ground, ground_end, next_break
 from .history import hold, sample_step
-from .integrate import FIRST_STEP, next_step_size, step
+from .integrate import FIRST_STEP, fit_dense, next_step_size, step
 from .motion import from_full, n_dof, rhs, to_full
 from .rest_skipping import rest_exit, rest_threshold
 from .state import Step, borrowed, new_work, scene_of
@@ -125,10 +125,10 @@ def run_scene(row, rec, res, log, hist, ctl):
     buffers = new_work()
     work = buffers[0]
     q, z, z_new, z_stage, q_end = work.q, work.z, work.z_new, work.z_stage, work.q_end
-    K, ctx, values, scratch = work.K, work.ctx, work.values, work.scratch
+    K, D, ctx, values, scratch = work.K, work.D, work.ctx, work.values, work.scratch
     extremes, mode_time = work.extremes, work.mode_time
     g_old, g_new, g_last = values.old, values.new, values.last
-    P, end = tab.P, tab.stages
+    end = tab.stages
     t_end = solver.t_end
     t_still = ground_end(floor)
     kappa = rest_threshold(body, contact)
@@ -199,18 +199,20 @@ def run_scene(row, rec, res, log, hist, ctl):
                 continue
             err_old = max(err, ERR_FLOOR)
 
-        taken = Step(mode, n, t, dt, z, z_new, K, P, end)
+        taken = Step(mode, n, t, dt, z, z_new, K, end, D)
+        fit_dense(tab, taken)
         k_e, x_e = first_event(taken, ctx, scene, rec, values, scratch)
         if k_e >= 0:
             dt = x_e * dt            # step again, exactly to the event
             if dt > 0.0:
                 step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
-                dt += polish(k_e, Step(mode, n, t, dt, z, z_new, K, P, end), ctx, scene,
+                dt += polish(k_e, Step(mode, n, t, dt, z, z_new, K, end, D), ctx, scene,
                              rec, scratch)
             else:
                 for k in range(n):
                     z_new[k] = z[k]
-            taken = Step(mode, n, t, dt, z, z_new, K, P, end)
+            taken = Step(mode, n, t, dt, z, z_new, K, end, D)
+            fit_dense(tab, taken)
         nh = sample_step(hist, nh, taken, ctx, scene, rec, scratch)
         to_full(mode, z_new, ctx, body, q_end)
         if dt > 0.0:

@@ -24,6 +24,7 @@ from numba.np.arrayobj import make_array
 from ._jit import DISABLED, jit
 from .codes import N_CTX, N_MODES, N_STATE
 from .extremes import N_EXTREMES
+from .integrate import DENSE_DEGREE
 from .tableaus import MAX_STAGES
 from .transitions import flat_sliding_friction
 
@@ -54,19 +55,20 @@ values g computed on the way."""
 WORK_DTYPE = np.dtype([("q", "f8", (N_STATE,)), ("z", "f8", (N_STATE,)),
                        ("z_new", "f8", (N_STATE,)), ("z_stage", "f8", (N_STATE,)),
                        ("q_end", "f8", (N_STATE,)), ("K", "f8", (MAX_STAGES + 1, N_STATE)),
-                       ("ctx", "f8", (N_CTX,)), ("values", VALUES_DTYPE),
+                       ("D", "f8", (DENSE_DEGREE, N_STATE)), ("ctx", "f8", (N_CTX,)), ("values", VALUES_DTYPE),
                        ("scratch", SCRATCH_DTYPE), ("extremes", "f8", (N_EXTREMES,)),
                        ("mode_time", "f8", (N_MODES,))])
 """The buffers of one scene, as one record: the full state q at the step's start and q_end
-at its end, the mode's compact state z and z_new, stage scratch, the stages K, the mode's
+at its end, the mode's compact state z and z_new, stage scratch, the stages K, the
+coefficients D of the dense output, the mode's
 contact ``ctx`` (``codes.CTX_*``), the event values, dense-output scratch, the running
 extremes and the time spent in each mode.  Its fields are arrays inside one allocation,
 which compiled code passes without counting references."""
 
-Step = namedtuple("Step", "mode n t dt z z_new K P end")
+Step = namedtuple("Step", "mode n t dt z z_new K end D")
 Step.__doc__ = """One taken step of ``mode`` from t to t + dt: the compact states z and z_new
-(n entries), the stages K it was taken with, the tableau's interpolation matrix P and the
-row ``end`` of K that holds f(t + dt, z_new)."""
+(n entries), the stages K it was taken with, the row ``end`` of K that holds
+f(t + dt, z_new) and the coefficients D of its dense output (``integrate.fit_dense``)."""
 
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from kernels import codes, tableaus
-from kernels.integrate import dense
+from kernels.integrate import DENSE_DEGREE, dense, fit_dense
 from kernels.state import Step
 
 METHODS = {codes.ADAPTIVE: "adaptive", codes.FIXED: "fixed"}
@@ -280,7 +280,8 @@ def test_error_estimate_is_fifth_power_of_step():
 def _dense_at(tab, z, z_new, K, dt, x):
     """integrate.dense on a ``Step`` built from one step of the test's loop."""
     n = z.size
-    step = Step(0, n, 0.0, dt, z, z_new, K, tab.P, tab.stages)
+    step = Step(0, n, 0.0, dt, z, z_new, K, tab.stages, np.zeros((DENSE_DEGREE, n)))
+    fit_dense(tab, step)
     out = np.zeros(n)
     dense(step, x, out)
     return out
