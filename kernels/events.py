@@ -70,11 +70,23 @@ def event_values(mode, t, q, ctx, scene, rec, out):
 
 @jit
 def event_value(k, mode, t, q, ctx, scene, rec, scratch):
-    """Event function k alone; the rocking modes' impact and overturning need no forces."""
+    """Event function k alone; only lift-off, the onset of slip, the Painleve condition and
+    free fall need the floor motion and the forces."""
+    b, h, theta_over = scene.body.b, scene.body.h, scene.solver.theta_over
     if mode == ROTATION or mode == SLIDE_ROTATION:
         if k == EV_IMPACT:
             return -ctx[CTX_S] * q[ITHETA]
         if k == EV_OVERTURN:
-            return scene.solver.theta_over - abs(q[ITHETA])
+            return theta_over - abs(q[ITHETA])
+        if k == EV_SLIP and mode == SLIDE_ROTATION:
+            return ctx[CTX_SIGMA] * corner_velocity(q, ctx[CTX_S], b, h)[0]
+    elif mode == ROTATION_JUMP:
+        if k == EV_JUMP_OVERTURN:
+            return theta_over - abs(q[ITHETA])
+        return q[IY] + corner(-1.0 if k == EV_GAP_L else 1.0, q[ITHETA], b, h)[1]
+    elif mode == TRANSLATION_JUMP:
+        return q[IY] - h
+    elif mode == SLIDE and k == EV_STOP:
+        return ctx[CTX_SIGMA] * q[IU]
     event_values(mode, t, q, ctx, scene, rec, scratch)
     return scratch[k]
