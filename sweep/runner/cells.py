@@ -8,21 +8,19 @@ arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that canno
 flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
 flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
 """
-import os
 import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 
-import kernels
 from kernels import api, codes
 
 from .. import cf
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
 from ..paper import criteria
-from . import fingerprint, grid
+from . import grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
@@ -152,11 +150,13 @@ def _warn(cell, text):
 
 
 def _marker():
-    """File saying that this kernel was compiled into the numba cache (see ``kernel_cached``)."""
-    base = os.environ.get("NUMBA_CACHE_DIR") or Path(kernels.__file__).parent / "__pycache__"
+    """File saying that this kernel was compiled into its cache folder (see ``kernel_cached``).
+
+    The folder is ``kernels._jit.CACHE_DIR``; the name carries the digest of the kernel
+    sources too, for a ``NUMBA_CACHE_DIR`` that is not keyed by them."""
+    from kernels import _jit
     version = f"py{sys.version_info[0]}{sys.version_info[1]}"
-    kernel = fingerprint.source_digest(("kernels/*.py",))
-    return Path(base) / f"sweep-warm-{kernel[:16]}-{version}"
+    return Path(_jit.CACHE_DIR) / f"sweep-warm-{_jit.SOURCE_DIGEST[:16]}-{version}"
 
 
 def kernel_cached():
