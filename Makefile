@@ -3,9 +3,6 @@
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
-# numba's cache misses edits in files a kernel calls: key the cache on the kernel sources
-KERNEL_HASH := $(shell cat kernels/*.py | sha1sum | cut -c1-12)
-export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache/$(KERNEL_HASH)
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
 .PHONY: install run scenes test test-nojit validate bench figures clean
@@ -16,29 +13,31 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e '.[mpi,test]'
 	touch $(STAMP)
 
+# Compiles the kernel once into its cache folder (kernels/_jit.py), or finds it there
 install: $(STAMP)
+	$(PY) -c "from sweep.runner.cells import warm_up; warm_up()"
 
-run: $(STAMP)
+run: install
 	mkdir -p figures
 	$(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.run studies/smoke.yaml --force
 	$(PY) -m sweep.plot results/smoke.nc --figure map -o figures/smoke_map.png
 	@echo "wrote results/smoke.nc and figures/smoke_map.png"
 
-scenes: $(STAMP)
+scenes: install
 	mkdir -p figures/scenes
 	for f in studies/fig0[345]*.yaml; do \
 	  $(PY) -m sweep.scene $$f --plot figures/scenes/$$(basename $$f .yaml).png || exit 1; done
 
-test: $(STAMP)
+test: install
 	$(PY) -m pytest -m "not slow" -q
 
 test-nojit: $(STAMP)
 	NUMBA_DISABLE_JIT=1 $(PY) -m pytest -m "not slow and not mpi" -q tests/kernels/test_impact.py
 
-validate: $(STAMP)
+validate: install
 	$(PY) -m pytest -m slow -q
 
-bench: $(STAMP)
+bench: install
 	$(PY) -m benchmarks
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
@@ -74,4 +73,4 @@ figures: $(STAMP) scenes
 	$(PY) -m sweep.estimate studies/bodies_example.yaml | tee figures/bodies_example.txt
 
 clean:
-	rm -rf .numba_cache out results figures
+	rm -rf out results figures
