@@ -11,7 +11,7 @@ between compiled functions that pass arrays costs more than their arithmetic.  E
 compiled once and handed to LLVM as ``alwaysinline`` (numba's ``forceinline``), which puts
 its machine code into every caller.  numba's own ``inline="always"`` re-types the function
 at every call site instead: the first compile of a scene and a study took 38 s of CPU with
-it and 15 s this way, and steady rocking runs about 10% faster.  The functions of
+it and 15 s this way, and steady rocking runs no slower (2-12% faster).  The functions of
 ``IR_INLINED`` keep numba's inlining: they return records, for which numba cannot build the
 Python wrapper it gives every function compiled on its own.  A function called from
 compiled code is compiled once per argument types, not once more for each constant it is

@@ -209,11 +209,13 @@ def _message(status, impacts, logged, clamps):
     return text
 
 
-def _load(dispatcher, args):
-    """Compile ``dispatcher`` for the types of ``args``, or load it from the cache, before a
-    timed call (no-op under ``NUMBA_DISABLE_JIT``)."""
-    if hasattr(dispatcher, "compile"):
-        dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
+def _compiled(dispatcher, args):
+    """The compiled function of ``dispatcher`` for the types of ``args``, compiled or loaded
+    from the cache now, to be called without numba's dispatch (which types a record
+    argument in Python the first time); ``dispatcher`` itself under ``NUMBA_DISABLE_JIT``."""
+    if not hasattr(dispatcher, "compile"):
+        return dispatcher
+    return dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
 
 
 def run_scene(scene, history=False, max_log=MAX_LOG):
@@ -230,9 +232,9 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
     args = (as_records(row)[0], rec, res, log, hist, control(cell=0))
-    _load(_run_scene, args)
+    run = _compiled(_run_scene, args)
     t0 = time.process_time()
-    n_log, n_h = _run_scene(*args)
+    n_log, n_h = run(*args)
     cpu = time.process_time() - t0
     status = int(res[codes.R_STATUS])
     overturned = status == codes.OVERTURNED
