@@ -41,35 +41,10 @@ bench: install
 	$(PY) -m benchmarks
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
-# 17 (closed forms), 18-21 (records), and the estimate example.  Each study runs on 2 ranks.
-SWEEP_STUDIES  := $(basename $(notdir $(wildcard studies/fig08_*.yaml studies/fig09_*.yaml \
-                                                    studies/fig10_*.yaml)))
-RECORD_STUDIES := fig18_elcentro_ns fig19_taft_ew fig20_elcentro_ew fig21_summary
-R := results
-
-figures: $(STAMP) scenes
+# 17 (closed forms), 18-21 (records), and the estimate example: one MPI job on 2 ranks.
+figures: install
 	mkdir -p figures
-	for s in $(SWEEP_STUDIES) $(RECORD_STUDIES); do \
-	  $(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.run studies/$$s.yaml --force --quiet || exit 1; done
-	for n in 08 09 10; do $(PY) -m sweep.plot $(R)/fig$${n}_acceleration.nc \
-	  $(R)/fig$${n}_velocity.nc $(R)/fig$${n}_displacement.nc --figure fig$$n \
-	  -o figures/fig$$n.png || exit 1; done
-	for s in variants_acceleration variants_velocity bodies_acceleration bodies_velocity \
-	         rate_acceleration rate_velocity; do $(PY) -m sweep.plot $(R)/fig09_$$s.nc \
-	  --figure fig09 -o figures/fig09_$$s.png || exit 1; done
-	$(PY) -m sweep.plot $(R)/fig08_acceleration.nc $(R)/fig08_velocity.nc \
-	  $(R)/fig08_displacement.nc $(R)/fig09_acceleration.nc $(R)/fig09_velocity.nc \
-	  $(R)/fig09_displacement.nc $(R)/fig10_acceleration.nc --figure fig11 -o figures/fig11.png
-	$(PY) -m sweep.plot $(R)/fig08_acceleration.nc $(R)/fig09_acceleration.nc \
-	  $(R)/fig09_velocity.nc $(R)/fig09_displacement.nc --figure fig12 -o figures/fig12.png
-	$(PY) -m sweep.plot $(R)/fig09_acceleration.nc --figure fig13 -o figures/fig13.png
-	$(PY) -m sweep.plot $(R)/fig08_acceleration.nc $(R)/fig09_acceleration.nc --figure fig14 \
-	  -o figures/fig14.png
-	$(PY) -m sweep.plot $(R)/fig09_velocity.nc --figure fig15 -o figures/fig15.png
-	$(PY) -m sweep.plot $(R)/fig09_displacement.nc --figure fig16 -o figures/fig16.png
-	$(PY) -m sweep.plot --figure fig17 -o figures/fig17.png
-	for n in 18 19 20 21; do s=$$(echo $(RECORD_STUDIES) | tr ' ' '\n' | grep fig$$n); \
-	  $(PY) -m sweep.plot $(R)/$$s.nc --figure fig$$n -o figures/fig$$n.png || exit 1; done
+	$(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.figures -o figures
 	$(PY) -m sweep.estimate studies/bodies_example.yaml | tee figures/bodies_example.txt
 
 clean:

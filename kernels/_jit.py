@@ -21,7 +21,8 @@ Reference counts: numba counts a reference each time compiled code receives an a
 owns its memory or takes one out of a tuple, with an atomic operation.  Arrays that are
 fields of one record allocation (``state.WORK_DTYPE``) or module constants own nothing and
 are passed for free; the kernel keeps its buffers there (the steady-rocking scene counts
-85,000 references with its buffers as separate arrays, 8,800 with them in one record).
+85,000 references with its buffers as separate arrays, 8,800 with them in one record), and
+the floor's record buffer goes on as a view without its memory record (``state.borrowed``).
 
 The cache.  numba's cache notices edits of a function's own file only, not of the files it
 calls, so the compiled code is kept in a folder named after the digest of every kernel
