@@ -238,9 +238,13 @@ def chunks(order, chunk_size):
     return [np.sort(order[i:i + chunk_size]) for i in range(0, order.size, chunk_size)]
 
 
-def plan(n, done, chunk_size, seed=DEFAULT_SEED):
-    """Chunks of the cells not yet ``done``, in seeded shuffled order (the order in which
-    ``runner.mpi.work`` deals them to the ranks).
+def deal(chunk_list, size):
+    """Chunks dealt round-robin to ``size`` ranks: a list of ``size`` lists of chunks."""
+    return [chunk_list[rank::size] for rank in range(size)]
+
+
+def plan(n, done, chunk_size, size, seed=DEFAULT_SEED):
+    """Chunks of the cells not yet ``done``, in seeded shuffled order, dealt to ``size`` ranks.
 
     Parameters
     ----------
@@ -248,14 +252,15 @@ def plan(n, done, chunk_size, seed=DEFAULT_SEED):
         Number of cells.
     done : ndarray of int
         Cells already computed (from part files); left out.
-    chunk_size, seed : int
-        Cells per chunk, shuffle seed.
+    chunk_size, size, seed : int
+        Cells per chunk, number of ranks, shuffle seed.
 
     Returns
     -------
-    list of ndarray
+    list of ``size`` lists of ndarray
+        The chunks of each rank.
     """
     order = shuffled(n, seed)
     if len(done):
         order = order[~np.isin(order, np.asarray(done, dtype=np.int64))]
-    return chunks(order, chunk_size)
+    return deal(chunks(order, chunk_size), size)

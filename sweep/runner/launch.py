@@ -122,7 +122,7 @@ def _plan(comm, args):
     n = study.n_cells
     done = parts.done_cells()
     chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
-    dealt = grid.plan(n, done, chunk_size, args.seed)
+    dealt = grid.plan(n, done, chunk_size, size, args.seed)
     if not args.quiet:
         say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {size} "
             f"rank{'s' if size > 1 else ''}, chunks of {chunk_size}", file=sys.stderr)
@@ -130,8 +130,8 @@ def _plan(comm, args):
             say(f"sweep.run: resuming: {len(done)} cells already done in {parts.directory}",
                 file=sys.stderr)
     warm_up()  # rank 0 compiles (or loads the cache) before the others start
-    plans = [{**common, "done": len(done), "chunks": dealt if rank == 0 else None}
-             for rank in range(size)]
+    plans = [{**common, "done": len(done), "chunks": dealt[rank], "dealt": dealt if rank == 0
+              else None} for rank in range(size)]
     return plans, study, lock
 
 
@@ -145,11 +145,11 @@ def _import_xarray():
     import xarray  # noqa: F401  (for the merge, while rank 0 waits for the others)
 
 
-def _watch(comm, args):
+def _watch(comm, args, dealt):
     """Rank 0's watch over the other ranks (none with one rank or ``--rank-timeout 0``)."""
     if comm.Get_size() == 1 or not args.rank_timeout:
         return None
-    return mpi.Watch(comm.Get_size(), floor=args.rank_timeout)
+    return mpi.Watch(dealt, floor=args.rank_timeout)
 
 
 def _chunk_runner(args):
@@ -170,7 +170,8 @@ def _run_refine(comm, args, study, plan, t_start):
     run_chunk = _chunk_runner(args)
     if rank != 0:
         while (round_plan := mpi.distribute(comm)) is not None:
-            mpi.work(comm, round_plan["study"], run_chunk=run_chunk, store=store.PartStore(round_plan["parts"], round_plan["stamp"]))
+            mpi.work(comm, round_plan["study"], round_plan["chunks"], run_chunk=run_chunk,
+                     store=store.PartStore(round_plan["parts"], round_plan["stamp"]))
         mpi.barrier(comm)
         return EXIT_OK
     stats = {}
@@ -180,16 +181,16 @@ def _run_refine(comm, args, study, plan, t_start):
         stamp = parts.prepare(round_study, discard=True)  # the fingerprint guards the folder
         n, done = round_study.n_cells, parts.done_cells()
         chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
-        dealt = grid.plan(n, done, chunk_size, args.seed)
+        dealt = grid.plan(n, done, chunk_size, size, args.seed)
         if len(done) and not args.quiet:
             say(f"sweep.run: resuming round {index}: {len(done)} of {n} cells already done "
                 f"in {parts.directory}", file=sys.stderr)
         mpi.distribute(comm, [{"study": round_study, "parts": str(parts.directory),
-                               "stamp": stamp}] * size)
+                               "stamp": stamp, "chunks": chunks} for chunks in dealt])
         progress = Progress(n, len(done), quiet=args.quiet, prefix=f"sweep.run: round {index}")
-        _, busy = mpi.work(comm, round_study, dealt, store=parts, progress=progress,
+        _, busy = mpi.work(comm, round_study, dealt[0], store=parts, progress=progress,
                            run_chunk=run_chunk, on_idle=_import_xarray,
-                           watch=_watch(comm, args))
+                           watch=_watch(comm, args, dealt))
         progress.close()
         for r, (cells, seconds) in busy.items():
             before = stats.get(r, (0, 0.0))
@@ -287,7 +288,7 @@ def _run(comm, args, state):
     progress = Progress(study.n_cells, plan["done"], quiet=args.quiet) if rank == 0 else None
     _, stats = mpi.work(comm, study, plan["chunks"], store=parts, progress=progress,
                         run_chunk=_chunk_runner(args), on_idle=_import_xarray,
-                        watch=_watch(comm, args) if rank == 0 else None)
+                        watch=_watch(comm, args, plan["dealt"]) if rank == 0 else None)
     if rank == 0:
         progress.close()
         arrays = parts.merge(study.n_cells)
@@ -328,7 +329,7 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
 
     def run(cells_study, prefix="sweep.run_study"):
         n = cells_study.n_cells
-        chunks = grid.plan(n, [], chunk_size or grid.default_chunk_size(n, 1), seed)
+        chunks = grid.plan(n, [], chunk_size or grid.default_chunk_size(n, 1), 1, seed)[0]
         shown = Progress(n, quiet=not progress, prefix=prefix)
         kept, _ = mpi.work(mpi.SerialComm(), cells_study, chunks, progress=shown)
         shown.close()

@@ -2,12 +2,10 @@
 
 The only module that imports mpi4py, and only when a launcher started the process (or
 ``SWEEP_MPI=1``): a plain ``python -m sweep.run`` never loads MPI, and a broken MPI install
-cannot break an import of ``sweep``.  Rank 0 deals the chunks on demand and computes too:
-every other rank holds ``AHEAD`` chunks beyond the one it computes and sends one small message
-per finished chunk with non-blocking sends, which rank 0 drains between its own chunks with
-``Iprobe`` (no busy ``recv``), answering each with the next chunk; so a rank that drew cheap
-cells takes more of them, and all finish together.  Every wait is a test-and-sleep loop, so an
-idle rank does not spin.  An exception on any rank prints its traceback and calls
+cannot break an import of ``sweep``.  Rank 0 computes too; the other ranks send it one small
+message per finished chunk with non-blocking sends, which it drains between its own chunks
+with ``Iprobe`` (no busy ``recv``).  Every wait is a test-and-sleep loop, so an idle rank
+does not spin.  An exception on any rank prints its traceback and calls
 ``COMM_WORLD.Abort``: the whole job ends within seconds instead of hanging.  Rank 0 watches the
 others (:class:`Watch`): a rank silent for longer than ``max(floor, WATCH_FACTOR x the slowest
 chunk so far)`` is stopped or stuck, and the job aborts naming it and the cells it held.
@@ -24,8 +22,7 @@ from kernels import codes
 
 POLL = 0.02  # s between tests of a pending message or request
 FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
-TAG_PLAN, TAG_PROGRESS, TAG_CHUNK = 11, 12, 13
-AHEAD = 1  # chunks a rank holds beyond the one it computes: it need not wait for rank 0
+TAG_PLAN, TAG_PROGRESS = 11, 12
 WATCH_FLOOR = 300.0  # s of silence always allowed to a rank (sweep.run --rank-timeout)
 WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so far is stuck
 
@@ -222,23 +219,19 @@ class Watch:
 
     Parameters
     ----------
-    size : int
-        Number of ranks.
+    held : list of lists of ndarray
+        The chunks dealt to every rank (``grid.plan``).
     floor : float
         Seconds of silence always allowed; 0 or None: no watch.
     """
 
-    def __init__(self, size, floor=WATCH_FLOOR, clock=time.monotonic):
+    def __init__(self, held, floor=WATCH_FLOOR, clock=time.monotonic):
         self.clock = clock
         now = clock()
         self.floor = floor or 0.0
-        self.held = {r: {} for r in range(1, size)}
+        self.held = {r: {int(c[0]): c for c in chunks} for r, chunks in enumerate(held) if r}
         self.last = {r: now for r in self.held}
         self.slowest = 0.0
-
-    def given(self, rank, chunk):
-        """``chunk`` was dealt to ``rank``."""
-        self.held[rank][int(chunk[0])] = chunk
 
     def chunk_done(self, rank, seconds, first=None):
         """A chunk (starting at cell ``first``) took ``seconds`` on ``rank``."""
@@ -272,34 +265,8 @@ class Watch:
                     "--rank-timeout")
 
 
-class _Dealer:
-    """Rank 0's queue of chunks, dealt to the other ranks one at a time as they finish."""
-
-    def __init__(self, comm, chunks, watch):
-        self.comm, self.queue, self.watch = comm, list(reversed(chunks)), watch
-
-    def own(self):
-        """The chunks rank 0 takes for itself, one at a time, until the queue is empty."""
-        while self.queue:
-            yield self.queue.pop()
-
-    def give(self, rank):
-        """Send ``rank`` the next chunk (nothing when the queue is empty)."""
-        if self.queue:
-            chunk = self.queue.pop()
-            self.comm.send(chunk, dest=rank, tag=TAG_CHUNK)
-            if self.watch is not None:
-                self.watch.given(rank, chunk)
-
-    def close(self):
-        """Tell every other rank that no chunk is left (sent after any chunk it was dealt)."""
-        for rank in range(1, self.comm.Get_size()):
-            self.comm.send(None, dest=rank, tag=TAG_CHUNK)
-
-
-def _drain(comm, progress, stats, watch, dealer):
-    """Take every waiting progress message on rank 0, dealing a chunk for each chunk done;
-    returns how many ranks said done."""
+def _drain(comm, progress, stats, watch):
+    """Take every waiting progress message on rank 0; returns how many ranks said done."""
     from mpi4py import MPI
 
     status, finished = MPI.Status(), 0
@@ -308,7 +275,6 @@ def _drain(comm, progress, stats, watch, dealer):
         kind, *payload = comm.recv(source=source, tag=TAG_PROGRESS)
         if kind == "chunk":
             n, failed, seconds, first = payload
-            dealer.give(source)
             if progress is not None:
                 progress.update(n, failed)
             if watch is not None:
@@ -321,35 +287,16 @@ def _drain(comm, progress, stats, watch, dealer):
     return finished
 
 
-def _dealt(comm):
-    """The chunks rank 0 deals this rank, as they come (test-and-sleep while none is held)."""
-    held, closed = [], False
-    while True:
-        while not closed and (not held or comm.Iprobe(source=0, tag=TAG_CHUNK)):
-            while not comm.Iprobe(source=0, tag=TAG_CHUNK):
-                time.sleep(POLL)
-            chunk = comm.recv(source=0, tag=TAG_CHUNK)
-            if chunk is None:
-                closed = True
-            else:
-                held.append(chunk)
-        if not held:
-            return
-        yield held.pop(0)
-
-
-def work(comm, study, chunks=None, *, store=None, progress=None, run_chunk=None, on_idle=None,
+def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_idle=None,
          watch=None):
-    """Compute chunks of a study: on rank 0, deal them, compute some and follow every rank
-    until all are done; on the others, compute those dealt.
+    """Run this rank's chunks; on rank 0, also follow every rank until all are done.
 
     Parameters
     ----------
     comm : communicator or SerialComm
     study : Study
     chunks : list of ndarray
-        Rank 0: every chunk of cell ids, in the order they are to be dealt (``grid.plan``);
-        ignored on the other ranks.
+        This rank's chunks of cell ids.
     store : PartStore, optional
         Where each finished chunk is written; without it (one process only) the results are
         kept in memory and returned.
@@ -358,7 +305,7 @@ def work(comm, study, chunks=None, *, store=None, progress=None, run_chunk=None,
     run_chunk : callable, optional
         ``run_chunk(study, cells) -> dict``; default ``cells.run_chunk``.
     on_idle : callable, optional
-        Called once on rank 0 when no chunk is left for it and other ranks are still working
+        Called once on rank 0 when its own chunks are done and other ranks are still working
         (to prepare the merge in time that would be spent waiting).
     watch : Watch, optional
         Rank 0: the other ranks' chunks, to detect a rank that stopped answering.
@@ -382,15 +329,7 @@ def work(comm, study, chunks=None, *, store=None, progress=None, run_chunk=None,
     rank, size = comm.Get_rank(), comm.Get_size()
     kept, requests, stats = [], [], {}
     busy, n_done, pending = 0.0, 0, size - 1
-    if rank == 0:
-        dealer = _Dealer(comm, chunks, watch)
-        for _ in range(1 + AHEAD):
-            for other in range(1, size):
-                dealer.give(other)
-        mine = dealer.own()
-    else:
-        mine = _dealt(comm)
-    for chunk in mine:
+    for chunk in chunks:
         t0 = time.perf_counter()
         result = run_chunk(study, chunk)
         if store is not None:
@@ -406,7 +345,7 @@ def work(comm, study, chunks=None, *, store=None, progress=None, run_chunk=None,
             if size > 1:
                 if watch is not None:
                     watch.chunk_done(0, seconds)
-                pending -= _drain(comm, progress, stats, watch, dealer)
+                pending -= _drain(comm, progress, stats, watch)
                 if watch is not None:
                     watch.check()
         else:
@@ -415,12 +354,11 @@ def work(comm, study, chunks=None, *, store=None, progress=None, run_chunk=None,
             requests = [r for r in requests if not r.Test()]
     stats[rank] = (n_done, busy)
     if rank == 0:
-        dealer.close()
-        pending -= _drain(comm, progress, stats, watch, dealer) if size > 1 else 0
+        pending -= _drain(comm, progress, stats, watch) if size > 1 else 0
         if pending > 0 and on_idle is not None:
             on_idle()
         while pending > 0:
-            pending -= _drain(comm, progress, stats, watch, dealer)
+            pending -= _drain(comm, progress, stats, watch)
             if pending > 0:
                 if watch is not None:
                     watch.check()
