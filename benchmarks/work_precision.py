@@ -39,7 +39,7 @@ class Ladder:
     scenes: tuple
 
 
-FULL = Ladder(adaptive=tuple(10.0 ** -k for k in range(4, 12)),
+FULL = Ladder(adaptive=tuple(m * 10.0 ** -k for k in range(4, 12) for m in (1.0, 0.3)),
               fixed=(1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5),
               scipy=tuple(10.0 ** -k for k in range(4, 13)), repeats=5, scipy_repeats=3,
               scenes=tuple(s.key for s in scenes.SCENES))

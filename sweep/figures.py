@@ -167,11 +167,8 @@ def main(argv=None):
     parser.add_argument("-o", "--output", default="figures", help="folder of the figures")
     args = parser.parse_args(argv)
     output = Path(args.output)
-    try:
-        comm = mpi.world()
-    except mpi.LauncherMismatch as err:
-        if mpi.first_process():
-            print(f"sweep.figures: error: {err}", file=sys.stderr, flush=True)
+    comm = mpi.world_or_say("sweep.figures")
+    if comm is None:
         return EXIT_BAD_INPUT
     with mpi.abort_on_exception(comm):
         stages = _Stages(comm)

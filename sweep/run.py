@@ -89,11 +89,8 @@ def main(argv=None):
     """Entry point; returns the exit status (0 ok, 1 error, 2 bad input or refused, 130
     interrupted)."""
     args = parse_args(argv)
-    try:
-        comm = mpi.world()
-    except mpi.LauncherMismatch as err:
-        if mpi.first_process():
-            print(f"sweep.run: error: {err}", file=sys.stderr, flush=True)
+    comm = mpi.world_or_say("sweep.run")
+    if comm is None:
         return EXIT_BAD_INPUT
     from .runner import launch  # the study machinery once the communicator stands
     try:

@@ -152,6 +152,16 @@ def world(environ=None):
     return comm
 
 
+def world_or_say(prog):
+    """The communicator (:func:`world`), or None after ``prog`` says why not (once per job)."""
+    try:
+        return world()
+    except LauncherMismatch as err:
+        if first_process():
+            print(f"{prog}: error: {err}", file=sys.stderr, flush=True)
+        return None
+
+
 def wait(request):
     """Wait for a non-blocking request by testing and sleeping (an idle rank does not spin)."""
     while not request.Test():
