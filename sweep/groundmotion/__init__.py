@@ -1,0 +1,1 @@
+"""Ground motions as numbers: intensity measures of a motion, synthetic motions for a scenario."""
