@@ -23,6 +23,7 @@ from .plots.histories import figure_history
 from .plots.limits import figure_limits
 from .plots.map import figure_map
 from .plots.records import figure_record_map, figure_summary
+from .plots.spectra import figure_spectrum
 from .plots.style import save_figure
 from .plots.sweeps import figure_boundaries, figure_plane
 
@@ -45,6 +46,7 @@ FIGURES = {
     "fig19": figure_record_map,  # ... under Taft EW
     "fig20": figure_record_map,  # ... under El Centro EW (+UD), in place of Miyagi-ken-oki
     "fig21": figure_summary,  # every body of every record on (PGA/a_o, PGV/v_o): A, B, C
+    "spectrum": figure_spectrum,  # rocking spectrum: peak |theta|/alpha against p, per alpha
     # overturning of frequency sweeps in the normalized plane (v/v_H, a/((B/H) g))
     "fig08": partial(figure_plane, label="Fig. 8"),
     "fig09": partial(figure_plane, label="Fig. 9"),
