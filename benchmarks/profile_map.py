@@ -34,7 +34,7 @@ def map_rows(every):
     from sweep.runner import cells
 
     study = load_study(STUDY)
-    rows, rec, _, _ = cells.build_rows(study, np.arange(0, study.n_cells, every))
+    rows, rec, _, _, _ = cells.build_rows(study, np.arange(0, study.n_cells, every))
     return rows, rec
 
 

@@ -84,7 +84,7 @@ def kernel_cpu_per_cell(study_path):
     ids = np.arange(study.n_cells)
     cells.warm_up()
     t0 = time.process_time()
-    rows, rec, bodies, _ = cells.build_rows(study, ids)  # the bench map has no invalid cell
+    rows, rec, bodies, motions, _ = cells.build_rows(study, ids)  # the bench map has no invalid cell
     build = (time.process_time() - t0) / ids.size
     cpu = np.empty(ids.size)
     results = np.empty((ids.size, codes.N_RES))
@@ -92,7 +92,7 @@ def kernel_cpu_per_cell(study_path):
         t0 = time.process_time()
         results[k] = api.run_cells(rows[k:k + 1], rec)[0]
         cpu[k] = time.process_time() - t0
-    return cpu, build, cells.summarize(results, bodies)["outcome"]
+    return cpu, build, cells.summarize(results, bodies, motions)["outcome"]
 
 
 def _same(path_a, path_b):

@@ -37,6 +37,11 @@ OUTCOME_FLAGS = ((codes.FAILED, codes.NO_ROCKING, codes.ROCKED, codes.OVERTURN),
 STATUS_FLAGS = (tuple(range(len(codes.STATUS_NAMES))), codes.STATUS_NAMES)
 OVERTURNED_FLAGS = ((-1, 0, 1), ("failed", "standing", "overturned"))
 DIRECTION_FLAGS = ((-1, 0, 1), ("negative_theta", "none", "positive_theta"))
+SLID_FLAGS = ((-1, 0, 1), ("failed", "no_slip", "slid"))
+SLID_THRESHOLD = 0.01  # m: a body whose largest slip exceeds this has slid
+MOTION_COMMENT = ("the motion as applied (after scale, pga or pgv); PGV and PGD after a "
+                  "zero-phase 0.1 Hz high-pass baseline correction (sweep.groundmotion."
+                  "intensity); sines and sweeps: their steady amplitudes")
 
 VARIABLES = {
     "outcome": Variable("int8", "1", "outcome of the cell", OUTCOME_FLAGS,
@@ -75,6 +80,24 @@ VARIABLES = {
                                    "floor velocity amplitude at overturning / v_H",
                                    comment="the paper's normalized velocity (v_H of Eq. 9); "
                                            "NaN if the body did not overturn"),
+    "slid": Variable("int8", "1", "body slid", SLID_FLAGS,
+                     comment=f"slid: G moved more than {SLID_THRESHOLD * 100:g} cm beyond what "
+                             "rotation alone explains (b (1 - cos theta) + h sin theta at "
+                             "max_abs_theta); failed: the simulation failed"),
+    "pga": Variable("float64", "m s-2", "peak ground acceleration of the horizontal motion",
+                    comment=MOTION_COMMENT),
+    "pgv": Variable("float64", "m s-1", "peak ground velocity of the horizontal motion",
+                    comment=MOTION_COMMENT),
+    "pgd": Variable("float64", "m", "peak ground displacement of the horizontal motion",
+                    comment=MOTION_COMMENT + "; NaN for a pulse (the floor drifts after it)"),
+    "significant_duration": Variable("float64", "s", "5-95 % Arias-intensity duration of the "
+                                                     "horizontal motion",
+                                     comment="records and synthetic motions; NaN otherwise"),
+    "pga_norm": Variable("float64", "1", "PGA / (g tan alpha)",
+                         comment="West's ratio: rocking starts above 1 without vertical motion"),
+    "pgv_norm": Variable("float64", "1", "PGV p / (g tan alpha)",
+                         comment="p = sqrt(g R / (i^2 + R^2)), sqrt(3 g / 4 R) for a uniform "
+                                 "body; Dimitrakopoulos & DeJong (2012)"),
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 
@@ -244,6 +267,8 @@ def to_dataset(study, arrays, *, history=None):
     coords[MODE[0]] = (MODE[0], np.array(MODE[1]), MODE[2])
     data = {}
     for name, var in VARIABLES.items():
+        if name in coords:  # e.g. a pga axis: its coordinate is the cells' PGA
+            continue
         a = np.asarray(arrays[name], dtype=var.dtype)
         data[name] = (dims + var.dims, a.reshape(shape + a.shape[1:]), variable_attrs(name))
     return xr.Dataset(data, coords=coords, attrs=global_attrs(study, history))

@@ -67,6 +67,12 @@ class Record:
         """Peak absolute acceleration [m/s^2]."""
         return float(np.max(np.abs(self.samples)))
 
+    @functools.cached_property
+    def intensity(self):
+        """:class:`~sweep.groundmotion.intensity.Intensity` of the samples (scale 1)."""
+        from ..groundmotion.intensity import measures
+        return measures(self.samples, self.dt)
+
     @property
     def duration(self):
         """Time from the first to the last sample [s]."""

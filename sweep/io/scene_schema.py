@@ -8,11 +8,13 @@ in).  ``apply_overrides`` sets values by dotted path in a raw dict before valida
 how a study gives each cell its values.
 """
 import copy
+import functools
 import math
 import sys
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
+import numpy as np
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
                       PlainValidator, ValidationError, ValidationInfo, field_validator,
                       model_validator)
@@ -26,7 +28,7 @@ from .problems import (MISSING, FieldError, FileProblems, Problem, join_path,
 from .yamlio import parse_yaml, read_text, top_level_problems
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
-KINDS = ("none", "sine", "sweep", "record", "pulse")
+KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic")
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
 MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 parameter row holds exactly
@@ -64,6 +66,7 @@ Frequency = quantity("frequency", gt=0)
 Angle = quantity("angle")
 Acceleration = quantity("acceleration")
 Coefficient = Annotated[Real, Field(ge=0)]
+Seed = Annotated[int, BeforeValidator(_plain_number), Field(ge=0, le=2 ** 63 - 1)]
 
 
 class StrictModel(BaseModel):
@@ -117,16 +120,28 @@ class NoMotion(StrictModel):
     kind: Literal["none"]
 
 
-class SineMotion(_Ground):
+class _Phased(_Ground):
+    """A periodic motion's ``phase``, or a ``seed`` that draws it uniformly in [0, 2 pi)."""
+
+    phase: Optional[Angle] = None
+    seed: Optional[Seed] = None
+
+    @model_validator(mode="after")
+    def _phase_or_seed(self):
+        if self.phase is not None and self.seed is not None:
+            raise FieldError("seed", self.seed, "give either phase or seed, not both")
+        return self
+
+
+class SineMotion(_Phased):
     """Amplitude as acceleration, velocity or displacement (converted with omega = 2 pi f)."""
 
     kind: Literal["sine"]
     amplitude: quantity("acceleration", "velocity", "length")
     frequency: Frequency
-    phase: Optional[Angle] = None
 
 
-class SweepMotion(_Ground):
+class SweepMotion(_Phased):
     """Frequency sweep keeping the amplitude named by ``hold`` constant; ``duration`` = length."""
 
     kind: Literal["sweep"]
@@ -136,7 +151,6 @@ class SweepMotion(_Ground):
     f_stop: Frequency
     duration: Duration
     law: Optional[Literal["log", "linear"]] = None
-    phase: Optional[Angle] = None
 
     @field_validator("amplitude", mode="plain")
     @classmethod
@@ -150,8 +164,26 @@ class SweepMotion(_Ground):
             raise ValueError(f"{err} (hold: {hold})") from None
 
 
-class RecordMotion(_Ground):
-    """A bundled record (``name``) or a user's file (``path``), scaled by ``scale`` or to ``pga``.
+class _Scaled(_Ground):
+    """An accelerogram multiplied by ``scale``, or scaled so that its PGA or its PGV
+    (``sweep.groundmotion.intensity``) is the one given."""
+
+    scale: Optional[Real] = None
+    pga: Optional[quantity("acceleration", gt=0)] = None
+    pgv: Optional[quantity("velocity", gt=0)] = None
+
+    @model_validator(mode="after")
+    def _one_scale(self):
+        given = [key for key in ("scale", "pga", "pgv") if getattr(self, key) is not None]
+        if len(given) > 1:
+            raise FieldError(given[1], str(getattr(self, given[1])),
+                              f"give one of scale, pga and pgv, not {' and '.join(given)}")
+        return self
+
+
+class RecordMotion(_Scaled):
+    """A bundled record (``name``) or a user's file (``path``), scaled by ``scale`` or to ``pga``
+    or ``pgv``.
 
     ``units`` is the acceleration unit of a two-column file (default m/s^2); ``.AT2`` files are
     in g.  A relative ``path`` is taken from the scene file's folder.
@@ -161,8 +193,6 @@ class RecordMotion(_Ground):
     name: Optional[str] = None
     units: Optional[str] = None
     path: Optional[str] = None
-    scale: Optional[Real] = None
-    pga: Optional[quantity("acceleration", gt=0)] = None
 
     @field_validator("name")
     @classmethod
@@ -200,9 +230,29 @@ class RecordMotion(_Ground):
             raise FieldError("path", self.path, "give either name or path, not both")
         if self.units is not None and self.path is None:
             raise FieldError("units", self.units, "units apply to a path: file only")
-        if self.scale is not None and self.pga is not None:
-            raise FieldError("pga", str(self.pga), "give either scale or pga, not both")
         return self
+
+
+class SyntheticMotion(_Scaled):
+    """A motion of a published stochastic model for an earthquake scenario
+    (``sweep.groundmotion.stochastic``): moment magnitude, distance to the rupture, Vs30 and
+    the seed of the noise; sampled every ``dt``."""
+
+    kind: Literal["synthetic"]
+    model: str = "boore2003"
+    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)]
+    distance: quantity("length", gt=0)
+    vs30: quantity("velocity", gt=0)
+    seed: Seed = 0
+    dt: Optional[Duration] = None
+
+    @field_validator("model")
+    @classmethod
+    def _known_model(cls, model):
+        from ..groundmotion import stochastic
+        if model not in stochastic.MODELS:
+            raise ValueError(f"unknown model; models: {', '.join(stochastic.MODELS)}")
+        return model
 
 
 class PulseMotion(_Ground):
@@ -214,8 +264,8 @@ class PulseMotion(_Ground):
     duration: Duration
 
 
-Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion],
-                   Field(discriminator="kind")]
+Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
+                         SyntheticMotion], Field(discriminator="kind")]
 
 
 class Excitation(StrictModel):
@@ -268,7 +318,7 @@ class Scene(StrictModel):
 # --- errors -----------------------------------------------------------------------------------
 
 _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
-           PulseMotion, Initial, Solver)
+           PulseMotion, SyntheticMotion, Initial, Solver)
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
@@ -362,8 +412,48 @@ def _si(quantity, default, body=None):
     return default if quantity is None else quantity.to_si(body)
 
 
+def _phase(g, body):
+    """A sine's or sweep's phase [rad]: as given, drawn from its ``seed``, or the default."""
+    if g.seed is not None:
+        return 2.0 * math.pi * float(np.random.default_rng(g.seed).random())
+    return _si(g.phase, DEFAULTS["ground"]["phase"], body)
+
+
+@functools.lru_cache(maxsize=256)
+def _synthetic(model, magnitude, distance, vs30, seed, dt):
+    from ..groundmotion import stochastic
+    options = {} if dt is None else {"dt": dt}
+    return stochastic.generate(model, magnitude, distance, vs30, seed, **options)
+
+
+def _accelerogram(g):
+    """The :class:`~sweep.io.records.Record` of a record or synthetic component."""
+    if g.kind == "synthetic":
+        try:
+            return _synthetic(g.model, g.magnitude, g.distance.to_si(), g.vs30.to_si(), g.seed,
+                              None if g.dt is None else g.dt.to_si())
+        except ValueError as err:
+            raise FileProblems([Problem("model", g.model, str(err))]) from None
+    return (records.load_record(g.name) if g.name is not None
+            else records.read_record_file(g.path, g.units))
+
+
+def _scale(g, rec, body):
+    """Factor on a record's samples: ``scale``, or the one that gives its ``pga``/``pgv``."""
+    for key in ("pga", "pgv"):
+        target = getattr(g, key)
+        if target is not None:
+            peak = getattr(rec.intensity, key)
+            if not peak > 0:
+                raise FileProblems([Problem(key, str(target), "the motion is zero throughout: "
+                                                              "it cannot be scaled to a peak")])
+            return target.to_si(body) / peak
+    return DEFAULTS["ground"]["scale"] if g.scale is None else g.scale
+
+
 def _ground(g, body):
-    """Resolved SI dict of one ground component (kernels/api.py docstring)."""
+    """Resolved SI dict of one ground component (kernels/api.py docstring); a synthetic
+    motion resolves into a record (its samples), both keep the :class:`Record` as ``source``."""
     if g.kind == "none":
         return {"kind": "none"}
     defaults = DEFAULTS["ground"]
@@ -372,22 +462,17 @@ def _ground(g, body):
     if g.kind == "sine":
         frequency = g.frequency.to_si()
         out.update(amplitude=units.acceleration_amplitude(g.amplitude, frequency, body),
-                   frequency=frequency, phase=_si(g.phase, defaults["phase"], body))
+                   frequency=frequency, phase=_phase(g, body))
     elif g.kind == "sweep":
         out.update(hold=g.hold, amplitude=g.amplitude.to_si(body), f_start=g.f_start.to_si(),
                    f_stop=g.f_stop.to_si(), law=g.law or defaults["law"],
-                   phase=_si(g.phase, defaults["phase"], body))
+                   phase=_phase(g, body))
     elif g.kind == "pulse":
         out.update(shape=g.shape, amplitude=g.amplitude.to_si(body))
     else:
-        rec = (records.load_record(g.name) if g.name is not None
-               else records.read_record_file(g.path, g.units))
-        if g.pga is not None and not rec.pga > 0:
-            raise FileProblems([Problem("pga", str(g.pga), "the record is zero throughout: it "
-                                                           "cannot be scaled to a peak")])
-        scale = (g.pga.to_si(body) / rec.pga if g.pga is not None
-                 else defaults["scale"] if g.scale is None else g.scale)
-        out.update(samples=rec.samples, dt=rec.dt, scale=scale)
+        rec = _accelerogram(g)
+        out.update(kind="record", samples=rec.samples, dt=rec.dt, scale=_scale(g, rec, body),
+                   source=rec)
     return out
 
 
@@ -414,8 +499,10 @@ def resolve_scene(scene):
         ``body``, ``contact`` (all six coefficients), ``excitation`` (``horizontal``,
         ``vertical``), ``initial`` and ``solver`` (all keys), in m, s, rad, Hz.  Sine amplitudes
         are acceleration amplitudes; a sweep's amplitude is in the SI unit of its ``hold``;
-        a record has ``samples`` [m/s^2, read-only], ``dt`` and ``scale`` (from ``pga`` if
-        given).  Without ``solver.t_end``: the end of the excitation + 5 s when every component
+        a record (or a synthetic motion, resolved into one) has ``samples`` [m/s^2,
+        read-only], ``dt``, ``scale`` (from ``pga`` or ``pgv`` if given) and ``source``, the
+        :class:`~sweep.io.records.Record`.  A ``seed`` of a sine or sweep is resolved into
+        its ``phase``.  Without ``solver.t_end``: the end of the excitation + 5 s when every component
         ends, else ``DEFAULTS["solver"]["t_end"]``.
 
     Raises

@@ -12,6 +12,7 @@ boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are
 units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as
 the normalized levels they are (CF units ``1``).
 """
+import glob
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -65,7 +66,8 @@ class Axis:
     values : tuple
         Raw values set into each cell's scene (numbers, unit strings or names).
     coords : ndarray, shape (n,)
-        Coordinates of the dataset: float64 in SI or in the body-relative unit, or str.
+        Coordinates of the dataset: float64 in SI or in the body-relative unit, int64 for
+        ``seed``, or str.
     units, long_name : str
         CF attributes of the coordinate.
     unit : str
@@ -340,12 +342,49 @@ def _axis(name, spec, path, scene, problems):
         result = _numeric_axis(name, values, unit, allowed, path, problems)
     if result is None or len(problems) > before:
         return None
+    if name == "seed":
+        result = _integer_axis(result, path, problems)
+        if result is None:
+            return None
     if name in grid.COMPUTED and not np.all(result.coords > 0):
         problems.append(Problem(path, spec, "values must be positive numbers"))
     unique, counts = np.unique(result.coords, return_counts=True)
     if np.any(counts > 1):  # a coordinate must pick one cell
         problems.append(Problem(path, spec, f"values repeat: {unique[counts > 1][0].item()!r}"))
     return None if len(problems) > before else result
+
+
+def _record_glob(spec, path, base_dir, problems):
+    """The files matching ``{glob: pattern}`` (relative to the study's folder), sorted, as a
+    list of paths as they will be written in the cells' scenes; None after a problem."""
+    pattern = spec["glob"]
+    if set(spec) != {"glob"} or not isinstance(pattern, str) or not pattern.strip():
+        problems.append(Problem(path, spec, "a record glob is {glob: 'folder/*.AT2'} alone"))
+        return None
+    found = sorted(p for p in glob.glob(pattern, root_dir=base_dir, recursive=True)
+                   if (Path(base_dir) / p).is_file())
+    if not found:
+        problems.append(Problem(join_path(path, "glob"), pattern,
+                                f"matches no file (relative to {Path(base_dir).resolve()})"))
+        return None
+    if len(found) > MAX_AXIS_VALUES:
+        problems.append(Problem(join_path(path, "glob"), pattern,
+                                f"matches {len(found)} files, more than {MAX_AXIS_VALUES}"))
+        return None
+    return found
+
+
+def _integer_axis(axis, path, problems):
+    """A ``seed`` axis: whole numbers >= 0, kept as int64 coordinates."""
+    coords = axis.coords
+    if not np.all((coords >= 0) & (coords == np.round(coords)) & (coords < 2.0 ** 63)):
+        bad = coords[~((coords >= 0) & (coords == np.round(coords)))][:1]
+        problems.append(Problem(path, bad[0].item() if bad.size else coords[0].item(),
+                                "seeds are whole numbers >= 0"))
+        return None
+    ints = coords.astype(np.int64)
+    return Axis(axis.name, tuple(int(v) for v in ints), ints, "1", axis.long_name, "",
+                axis.dimension)
 
 
 def _quantity_or_none(value):
@@ -704,6 +743,10 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
     if isinstance(spec, dict) and spec:
         for axis_name, axis_spec in spec.items():
             path = join_path("grid", axis_name)
+            if axis_name == "record" and isinstance(axis_spec, dict) and "glob" in axis_spec:
+                axis_spec = _record_glob(axis_spec, path, base_dir, problems)
+                if axis_spec is None:
+                    continue
             if _axis_name_ok(axis_name, path, problems):
                 axis = _axis(axis_name, axis_spec, path, scene, problems)
                 if axis is not None:

@@ -24,6 +24,7 @@ _FIXED = {
     "m/s": ("velocity", 1.0), "cm/s": ("velocity", 0.01), "mm/s": ("velocity", 0.001),
     "kine": ("velocity", 0.01),
     "m": ("length", 1.0), "cm": ("length", 0.01), "mm": ("length", 0.001),
+    "km": ("length", 1000.0),
     "rad": ("angle", 1.0), "deg": ("angle", math.pi / 180.0),
     "rad/s": ("angular_velocity", 1.0), "deg/s": ("angular_velocity", math.pi / 180.0),
     "hz": ("frequency", 1.0),

@@ -3,12 +3,14 @@
 Reads only the Dataset of ``sweep.run`` (``outcome`` with its ``flag_values`` and
 ``flag_meanings``, coordinates with ``units`` and ``long_name``).  By default frequency runs
 along x (log scale when the values are log-spaced) and amplitude along y; an amplitude in
-West's units gets the line amplitude = 1, West's criterion for the start of rocking (Eq. 1).
+West's units gets the line amplitude = 1, West's criterion for the start of rocking (Eq. 1).  Cells whose body slid (``slid``) carry a
+cross, so that a squat body that slid far is not read as "no rocking" alone.
 """
 import itertools
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
@@ -55,8 +57,18 @@ def _axes_of(ds, x, y):
     return x, y
 
 
-def draw_outcome_map(ax, da, x, y, legend=True):
-    """Draw one 2-D outcome slice ``da`` (dims x and y) on ``ax``."""
+def _mark_slid(ax, slid, x, y):
+    """A small cross on every cell whose body slid (``slid`` == 1); True if any."""
+    slid = slid.transpose(y, x)
+    X, Y = np.meshgrid(slid[x].values, slid[y].values)
+    hit = slid.values == 1
+    ax.scatter(X[hit], Y[hit], marker="x", s=10, c="k", linewidths=0.7)
+    return bool(hit.any())
+
+
+def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
+    """Draw one 2-D outcome slice ``da`` (dims x and y) on ``ax``; cells of ``slid`` == 1
+    (the same slice of the dataset's ``slid``) get a cross."""
     da = da.transpose(y, x)
     xs, ys = da[x].values, da[y].values
     logx, logy = _log_spaced(xs), _log_spaced(ys)
@@ -75,12 +87,16 @@ def draw_outcome_map(ax, da, x, y, legend=True):
         ax.axhline(1.0, color="k", ls="--", lw=1)
         ax.annotate("West: a = (B/H) g", (xs.min(), 1.0), xytext=(2, 3),
                     textcoords="offset points", fontsize=8)
+    any_slid = slid is not None and _mark_slid(ax, slid, x, y)
     if legend:
         meanings = da.attrs.get("flag_meanings", "failed no_rocking rocked overturned").split()
         values = list(np.atleast_1d(da.attrs.get("flag_values", sorted(OUTCOME_COLOURS))))
         present = set(np.unique(da.values).tolist())
         handles = [Patch(color=OUTCOME_COLOURS[int(v)], label=m.replace("_", " "))
                    for v, m in zip(values, meanings) if int(v) in present or int(v) >= 0]
+        if any_slid:
+            handles.append(Line2D([], [], marker="x", color="k", ls="", markersize=5,
+                                  label="slid"))
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   fontsize=8, frameon=False)
 
@@ -107,7 +123,8 @@ def figure_map(ds, x=None, y=None):
     for k, combo in enumerate(combos):
         ax = axes.flat[k]
         sel = dict(zip(others, combo))
-        draw_outcome_map(ax, outcome.isel(sel), x, y, legend=(k == cols - 1 or n == 1))
+        draw_outcome_map(ax, outcome.isel(sel), x, y, legend=(k == cols - 1 or n == 1),
+                         slid=ds["slid"].isel(sel) if "slid" in ds else None)
         title = ", ".join(f"{d} = {ds[d].values[i]:.4g}" if ds[d].dtype.kind == "f"
                           else f"{d} = {ds[d].values[i]}" for d, i in sel.items())
         ax.set_title(title, fontsize=10)

@@ -19,6 +19,7 @@ from kernels import api, codes
 from .. import cf
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
+from ..groundmotion import applied
 from ..paper import criteria
 from . import grid
 
@@ -44,7 +45,7 @@ def _place(records, buffer, offsets):
 
 
 def build_rows(study, cells):
-    """Kernel rows, record buffer and bodies of some cells.
+    """Kernel rows, record buffer, bodies and horizontal motions of some cells.
 
     Returns
     -------
@@ -53,12 +54,16 @@ def build_rows(study, cells):
         The shared record buffer (a record used by many cells is stored once).
     bodies : ndarray, shape (n, 3)
         B, H [m] and i_g [m] (NaN for a uniform body) of each cell.
+    motions : ndarray, shape (n, 4)
+        PGA, PGV, PGD and significant duration of each cell's horizontal motion
+        (``groundmotion.applied.peaks``).
     problems : dict of int to str
         Position in ``cells`` to the problem of each cell whose scene cannot be built
         (loaded, resolved or packed); its row and body are NaN.
     """
     rows = np.empty((len(cells), codes.N_PAR))
     bodies = np.empty((len(cells), 3))
+    motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
     buffer, offsets, problems = [], {}, {}
     for k, index in enumerate(cells):
         records = []
@@ -75,11 +80,26 @@ def build_rows(study, cells):
                 rows[k, start + codes.G_REC_OFF] = next(placed)
         body = resolved["body"]
         bodies[k] = body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"]
-    return rows, api.record_buffer(buffer), bodies, problems
+        motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
+    return rows, api.record_buffer(buffer), bodies, motions, problems
 
 
-def summarize(results, bodies):
-    """Per-cell arrays of ``cf.VARIABLES`` from kernel result rows (n, N_RES)."""
+def slid(max_slip, max_abs_theta, B, H):
+    """True where the body slid more than ``cf.SLID_THRESHOLD``.
+
+    ``max_slip`` is the largest horizontal offset of G from its start; rotation alone by up to
+    theta about a corner moves G by at most b (1 - cos theta) + h sin theta (theta <= pi/2),
+    so the base slipped by at least the excess of ``max_slip`` over that: a conservative flag
+    (a slip hidden behind a larger rotation the other way is not counted).
+    """
+    theta = np.minimum(max_abs_theta, 0.5 * np.pi)
+    by_rotation = 0.5 * B * (1.0 - np.cos(theta)) + 0.5 * H * np.sin(theta)
+    return max_slip - by_rotation > cf.SLID_THRESHOLD
+
+
+def summarize(results, bodies, motions):
+    """Per-cell arrays of ``cf.VARIABLES`` from kernel result rows (n, N_RES), the cells'
+    bodies and motions (``build_rows``)."""
     status = results[:, codes.R_STATUS].astype(np.int8)
     failed = np.isin(status, codes.FAILED_STATUSES)
     overturned = status == codes.OVERTURNED
@@ -90,6 +110,10 @@ def summarize(results, bodies):
     B, H, i_g = bodies.T
     v_H = np.array([criteria.single_shock_velocity(b, h, None if np.isnan(i) else i)
                     for b, h, i in bodies], dtype=np.float64).reshape(-1)
+    p = np.array([criteria.body_constants(b, h, None if np.isnan(i) else i).p
+                  for b, h, i in bodies], dtype=np.float64).reshape(-1)
+    west = criteria.west_acceleration(B, H)  # g tan(alpha)
+    pga, pgv, pgd, d5_95 = motions.T
     out = {
         "outcome": outcome,
         "overturned": np.where(failed, -1, overturned),
@@ -107,6 +131,9 @@ def summarize(results, bodies):
         "f_at_overturn": results[:, codes.R_F_AT_OVERTURN],
         "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / criteria.west_acceleration(B, H),
         "v_norm_at_overturn": results[:, codes.R_V_AT_OVERTURN] / v_H,
+        "slid": np.where(failed, -1, slid(results[:, codes.R_MAX_SLIP], theta, B, H)),
+        "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
+        "pga_norm": pga / west, "pgv_norm": pgv * p / west,
     }
     return {name: np.ascontiguousarray(a, dtype=cf.VARIABLES[name].dtype)
             for name, a in out.items()}
@@ -133,7 +160,7 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET):
         nothing is raised for it (a ``RuntimeWarning`` names the last two kinds).
     """
     cells = np.asarray(cells, dtype=np.int64).reshape(-1)
-    rows, rec, bodies, problems = build_rows(study, cells)
+    rows, rec, bodies, motions, problems = build_rows(study, cells)
     built = np.ones(cells.size, dtype=bool)
     built[list(problems)] = False
     results = api.not_run(cells.size)
@@ -142,7 +169,7 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET):
         _warn(cells[k], f"its scene cannot be built: {problem}")
     for k in np.flatnonzero(results[:, codes.R_STATUS] == codes.TIME_BUDGET):
         _warn(cells[k], f"stopped after the per-cell wall-time budget of {budget:g} s")
-    return {"cell": cells, **summarize(results, bodies)}
+    return {"cell": cells, **summarize(results, bodies, motions)}
 
 
 def _warn(cell, text):

@@ -25,7 +25,8 @@ from . import grid
 
 _ROOT = Path(__file__).resolve().parents[2]
 # Source files whose edit can change what a cell's part holds.
-PROGRAM_SOURCES = ("kernels/*.py", "sweep/io/*.py", "sweep/runner/grid.py",
+PROGRAM_SOURCES = ("kernels/*.py", "sweep/io/*.py", "sweep/groundmotion/*.py",
+                   "sweep/runner/grid.py",
                    "sweep/runner/cells.py", "sweep/paper/criteria.py", "sweep/cf.py")
 _RECORD_KEYS = ("name", "path")
 _EXCITATIONS = ("horizontal", "vertical")
@@ -66,6 +67,9 @@ def record_references(study):
             found |= {(key, ground[key]) for key in _RECORD_KEYS
                       if isinstance(ground.get(key), str)}
     for axis in study.axes:
+        if axis.name == "record":
+            found |= {grid.record_source(v) for v in axis.values if isinstance(v, str)}
+            continue
         for target in grid.targets(axis.name):
             section, *_, key = target.split(".")
             if section == "excitation" and key in _RECORD_KEYS:

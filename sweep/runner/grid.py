@@ -11,11 +11,15 @@ import math
 
 import numpy as np
 
+from ..io.records import NAMES
 from ..io.scene_schema import HOLD_DIMENSIONS, apply_overrides
 from ..io.units import parse_quantity
 
 # The contact friction coefficients that the ``mu`` axis sets together.
 MU_PATHS = ("contact.mu_s", "contact.mu_k", "contact.mu_edge_s", "contact.mu_edge_k")
+
+# A record axis value is a bundled name or a file's path (see ``record_source``).
+RECORD_PATHS = ("excitation.horizontal.name", "excitation.horizontal.path")
 
 # Axis name -> (scene path(s) it sets, dimension of its values, long name).  ``None`` as
 # dimension: taken from the base scene (an amplitude's dimension depends on its excitation);
@@ -27,9 +31,15 @@ AXES = {
                   "horizontal floor frequency"),
     "phase": (("excitation.horizontal.phase",), "angle", "phase of the horizontal floor motion"),
     "vertical_amplitude": (("excitation.vertical.amplitude",), None, "vertical floor amplitude"),
-    "record": (("excitation.horizontal.name",), "name", "ground-motion record"),
+    "record": (RECORD_PATHS, "name", "ground-motion record (bundled name or file)"),
     "scale": (("excitation.horizontal.scale",), "dimensionless",
               "scale factor on the ground-motion record"),
+    "pga": (("excitation.horizontal.pga",), "acceleration",
+            "peak ground acceleration the motion is scaled to"),
+    "pgv": (("excitation.horizontal.pgv",), "velocity",
+            "peak ground velocity the motion is scaled to"),
+    "seed": (("excitation.horizontal.seed",), "dimensionless",
+             "seed of the horizontal motion (synthetic noise, or a sine's or sweep's phase)"),
     "B": (("body.B",), "length", "full breadth of the body"),
     "H": (("body.H",), "length", "full height of the body"),
     "b_over_h": (("body.H",), "dimensionless", "aspect ratio b/h = B/H (B kept, H = B/(b/h))"),
@@ -66,6 +76,11 @@ SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver")
 DEFAULT_SEED = 0
 MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seconds at worst
 CHUNKS_PER_RANK = 16  # default chunk size aims at this many chunks per rank (balance, resume)
+
+
+def record_source(value):
+    """``("name", value)`` for a bundled record's name, else ``("path", value)``."""
+    return ("name", value) if value in NAMES else ("path", value)
 
 
 def targets(name):
@@ -174,14 +189,19 @@ def _length_si(value):
 def cell_overrides(study, index):
     """{scene path: raw value} that turns the base scene into cell ``index``'s scene.
 
-    Plain axes first; ``mu`` sets the four friction coefficients unless an axis sets one of
+    Plain axes first (a ``record`` sets the component's ``name`` or ``path``, and clears the
+    other); ``mu`` sets the four friction coefficients unless an axis sets one of
     them explicitly; then b_over_h (H = B/(b/h)) and size (B, H times the factor), computed
     in metres from the cell's B and H.
     """
     values = cell_values(study, index)
     overrides = {}
     for name, value in values.items():
-        if name not in COMPUTED and name != "mu":
+        if name == "record":
+            key, _ = record_source(value)
+            overrides.update({path: value if path.endswith(key) else None
+                              for path in RECORD_PATHS})
+        elif name not in COMPUTED and name != "mu":
             for path in targets(name):
                 overrides[path] = value
     if "mu" in values:

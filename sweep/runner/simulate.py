@@ -3,8 +3,11 @@
 The result carries the JSON fields of DESIGN.md section 4 as attributes and, when asked, the
 history as an xarray Dataset (``cf.history_dataset``).
 """
-from kernels.api import MAX_LOG
+from collections import namedtuple
 
+from kernels.api import MAX_LOG, SceneResult
+
+from ..groundmotion import applied
 from ..io.problems import FileProblems, Problem
 from ..io.scene_schema import load_scene, resolve_scene
 
@@ -13,10 +16,15 @@ MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out a
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
              "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
              "steps", "cpu_s")
+MOTION_KEYS = ("pga", "pgv", "pgd")
+
+Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS)
+Result.__doc__ = """The kernel's ``SceneResult`` and the peaks of the horizontal motion applied:
+``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``)."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
-    """Run one scene (path or dict, units as in scene files) and return a ``SceneResult``.
+    """Run one scene (path or dict, units as in scene files) and return a :data:`Result`.
 
     With ``history=True`` the result's ``history`` is an ``xarray.Dataset`` sampled every
     ``solver.dt_out`` seconds (its ``source`` attribute names the scene file, if any).
@@ -32,7 +40,8 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     resolved = resolve_scene(load_scene(scene))
     if history:
         _check_history(resolved, None if isinstance(scene, dict) else scene)
-    result = run_scene(resolved, history=history, max_log=max_log)
+    motion = applied.peaks(resolved["excitation"]["horizontal"])
+    result = Result(*run_scene(resolved, history=history, max_log=max_log), *motion[:3])
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
@@ -61,9 +70,10 @@ def summary_line(result):
 def to_json_dict(result):
     """The JSON contract of DESIGN.md section 4, plus the end status message, the impact
     count (``impact_times`` holds the first ``impact_count`` impacts only when
-    ``impact_log_truncated``) and the impacts whose restitution was clamped."""
+    ``impact_log_truncated``), the impacts whose restitution was clamped, and the peaks of the
+    horizontal motion applied."""
     out = {key: getattr(result, key) for key in JSON_KEYS}
     for key in ("message", "impact_slipped", "impact_count", "impact_log_truncated",
-                "energy_clamps"):
+                "energy_clamps", *MOTION_KEYS):
         out[key] = getattr(result, key)
     return out
