@@ -261,7 +261,7 @@ def to_dataset(study, arrays, *, history=None):
     """
     import xarray as xr
 
-    dims = tuple(dim.name for dim in study.dims)
+    dims, _ = _dims(study)
     shape = study.shape
     coords = _coords(study)
     coords[MODE[0]] = (MODE[0], np.array(MODE[1]), MODE[2])
@@ -274,14 +274,50 @@ def to_dataset(study, arrays, *, history=None):
     return xr.Dataset(data, coords=coords, attrs=global_attrs(study, history))
 
 
+def dataset_names(study):
+    """{axis or zip-group name of the study: its name in the dataset}.
+
+    A dotted scene path is named by its last key (``excitation.horizontal.magnitude`` ->
+    ``magnitude``) when no other axis or group takes that name and it is not the name of an
+    axis of ``grid.AXES`` (``excitation.vertical.scale`` is not the ``scale`` axis), else by
+    the path with ``_`` for ``.`` (``excitation_vertical_scale``).  A name that is an
+    attribute of ``xarray.Dataset`` or ``xarray.DataArray`` gets ``_factor`` (``size``) or
+    ``_axis`` appended, so that ``ds.outcome.size_factor`` is the coordinate, not the element
+    count.  Each coordinate keeps the study's name as its ``study_axis`` attribute.
+    """
+    import xarray as xr
+
+    names = [axis.name for axis in study.axes]
+    names += [dim.name for dim in study.dims if dim.name not in names]
+    short = {n: n.rsplit(".", 1)[-1] for n in names}
+    taken = list(short.values())
+    out = {}
+    for name in names:
+        label = short[name]
+        if label != name and (taken.count(label) > 1 or label in grid.AXES):
+            label = name.replace(".", "_")
+        if (hasattr(xr.Dataset, label) or hasattr(xr.DataArray, label)
+                or label in VARIABLES and label != name):
+            label += "_factor" if label == "size" else "_axis"
+        out[name] = label
+    return out
+
+
+def _dims(study):
+    names = dataset_names(study)
+    return tuple(names[dim.name] for dim in study.dims), names
+
+
 def _coords(study):
     """Coordinates of every axis of a study, with their CF attributes."""
+    dims, names = _dims(study)
     coords = {}
-    for dim in study.dims:
+    for dim, dim_name in zip(study.dims, dims):
         for axis in dim.axes:
-            coords[axis.name] = (dim.name, axis.coords,
-                                 {"units": axis.units, "long_name": axis.long_name,
-                                  **({"study_unit": axis.unit} if axis.unit else {})})
+            coords[names[axis.name]] = (dim_name, axis.coords,
+                                        {"units": axis.units, "long_name": axis.long_name,
+                                         "study_axis": axis.name,
+                                         **({"study_unit": axis.unit} if axis.unit else {})})
     return coords
 
 
@@ -290,6 +326,7 @@ def refine_attrs(study, rounds, simulations):
     _, axis = refine.refined_axis(study)
     return {
         "refine_axis": axis.name,
+        "refine_dimension": dataset_names(study)[axis.name],
         "refine_tolerance": study.refine.tolerance,
         "refine_tolerance_units": axis.units,
         "refine_boundary": f"lowest {axis.name} at which the body overturns, by bisection "
@@ -325,7 +362,7 @@ def refine_dataset(study, arrays, *, rounds, history=None):
     import xarray as xr
 
     k, axis = refine.refined_axis(study)
-    dims = tuple(dim.name for dim in study.dims)
+    dims, _ = _dims(study)
     line_dims, shape = dims[:k] + dims[k + 1:], refine.line_shape(study)
     data = {}
     for name, var in REFINE_VARIABLES.items():

@@ -133,7 +133,7 @@ def _panel_title(ds, scene, sel):
     parts = []
     for dim, i in sel.items():
         value = ds[dim].values[i]
-        if dim == "excitation.vertical.scale":
+        if ds[dim].attrs.get("study_axis") == "excitation.vertical.scale":
             vertical = (scene.get("excitation") or {}).get("vertical") or {}
             parts.append("horizontal only" if value == 0 else
                          f"with vertical {vertical.get('name') or vertical.get('path')}"

@@ -99,7 +99,7 @@ def test_normalized_measures_against_the_body(tmp_path):
     ds = sweep.run_study(study)
     for bh in (0.2, 0.4):
         for size in (1.0, 4.0):
-            cell = ds.sel(b_over_h=bh, size=size)
+            cell = ds.sel(b_over_h=bh, size_factor=size)
             B, H = 0.2 * size, 0.2 * size / bh
             R = 0.5 * math.hypot(B, H)
             p = math.sqrt(3 * G / (4 * R))

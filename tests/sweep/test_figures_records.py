@@ -101,7 +101,7 @@ def test_peaks_of_a_users_record(tmp_path):
 
 
 def test_region_a_never_rocks_under_horizontal_shaking(record_result):
-    outcome = record_result["outcome"].sel({"excitation.vertical.scale": 0.0})
+    outcome = record_result["outcome"].sel(excitation_vertical_scale=0.0)
     H, HB = plot_records.body_coords(outcome)
     np.testing.assert_allclose(H / HB, np.broadcast_to([[0.03], [0.12], [0.5]], H.shape))
     west = G / HB  # (B/H) g
@@ -113,7 +113,7 @@ def test_region_a_never_rocks_under_horizontal_shaking(record_result):
 
 
 def test_tally_counts_cells_by_the_criteria(record_result):
-    outcome = record_result["outcome"].sel({"excitation.vertical.scale": 0.0})
+    outcome = record_result["outcome"].sel(excitation_vertical_scale=0.0)
     pga, pgv = 3.417, 0.3232
     counts = plot_records.tally(outcome, pga, pgv)
     # B = 3, 12, 50 cm and H/B = 2, 4, 10; H = 6 and 500 cm lie outside the 10-400 cm window;

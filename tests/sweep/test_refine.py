@@ -133,10 +133,11 @@ def test_initial_angle_threshold_is_alpha(theta_ds):
     np.testing.assert_array_less(np.abs(boundary - alpha[1:4]), THETA_TOL / 2)
     rounds = math.ceil(math.log2(THETA_GAP / THETA_TOL))
     assert ds["simulations"].values.tolist() == [5, 5 + rounds, 5 + rounds, 5 + rounds, 5]
-    theta = ds["initial.theta"].values
+    theta = ds["theta"].values  # the dataset names a dotted axis by its last key
     expected = (theta[:, None] > alpha[None, :]).astype(np.int8)
     np.testing.assert_array_equal(ds["coarse_overturned"].values, expected)
-    assert ds["coarse_overturned"].dims == ("initial.theta", "b_over_h")
+    assert ds["coarse_overturned"].dims == ("theta", "b_over_h")
+    assert ds["theta"].attrs["study_axis"] == "initial.theta"
     assert ds["coarse_transitions"].values.tolist() == [0, 1, 1, 1, 0]
     assert np.isnan(ds["boundary"].values[[0, 4]]).all()
     assert ds["boundary_upper"].values[0] == 0.06 and ds["boundary_lower"].values[4] == 0.66
@@ -164,7 +165,7 @@ def test_bracket_holds_the_dense_grid_transition(theta_ds):
     raw["grid"] = {"initial.theta": {"start": 0.06, "stop": 0.66, "num": 241},
                    "b_over_h": [0.2, 0.5]}
     dense = sweep.run_study(raw)
-    theta = dense["initial.theta"].values
+    theta = dense["theta"].values
     for b_over_h in (0.2, 0.5):
         row = dense["overturned"].sel(b_over_h=b_over_h).values
         first = int(np.argmax(row == 1))

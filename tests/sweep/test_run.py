@@ -21,9 +21,9 @@ def test_failing_cell_is_flagged_and_the_study_goes_on(tmp_path):
     raw = make_study({"amplitude": {"values": [0.5, 1.5, 2.5], "unit": "west"},
                       "solver.max_steps": [20, 1_000_000]}, output="out/fail.nc")
     ds = sweep.run_study(raw)
-    assert ds["outcome"].dims == ("amplitude", "solver.max_steps")
-    tiny = ds.sel({"solver.max_steps": 20})
-    big = ds.sel({"solver.max_steps": 1_000_000})
+    assert ds["outcome"].dims == ("amplitude", "max_steps")  # a dotted axis: its last key
+    tiny = ds.sel(max_steps=20)
+    big = ds.sel(max_steps=1_000_000)
     assert tiny["outcome"].values.tolist() == [0, -1, -1]  # at rest: no steps needed
     assert tiny["status"].values.tolist() == [codes.OK] + [codes.BUDGET_EXHAUSTED] * 2
     assert tiny["overturned"].values.tolist() == [0, -1, -1]

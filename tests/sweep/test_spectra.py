@@ -79,7 +79,7 @@ def test_p_from_size_and_slenderness_axes():
     H = B / np.array(ratios)
     np.testing.assert_allclose(blocks["p"].values, _uniform_p(B, H), rtol=1e-12)
     np.testing.assert_allclose(np.tan(blocks["alpha"].values), B / H, rtol=1e-12)
-    assert size_dim(blocks) == "size"
+    assert size_dim(blocks) == "size_factor"  # the dataset name of the size axis
 
 
 def test_p_from_breadth_axis(elcentro):
