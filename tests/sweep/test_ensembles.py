@@ -153,3 +153,20 @@ def test_synthetic_scenario_errors_have_their_path(tmp_path):
         sweep.simulate(scene)
     paths = {p.path for p in err.value.problems}
     assert {"excitation.horizontal.model", "excitation.horizontal.magnitude"} <= paths
+
+
+def test_nothing_rocks_below_wests_level_for_any_seed(tmp_path):
+    """Without vertical motion a body on a rigid floor does not even rock while the floor's
+    acceleration stays below (B/H) g (West, Eq. 1): no seed of the ensemble overturns it."""
+    synthetic = {"kind": "synthetic", "model": "boore2003", "magnitude": 7.0,
+                 "distance": "10 km", "vs30": "760 m/s"}
+    west = G * BODY["B"] / BODY["H"]
+    study = _study(tmp_path, {"seed": list(range(12)),
+                              "pga": {"values": [0.5 * west, 0.9 * west, 0.999 * west,
+                                                 1.5 * west, 3.0 * west]}},
+                   excitation=synthetic, solver={"t_end": 25.0})
+    ds = sweep.run_study(study)
+    below = ds.pga_norm < 1.0
+    assert int(below.sum()) == 12 * 3
+    assert (ds.outcome.where(below) == 0).sum() == 36  # neither rocked nor overturned
+    assert (ds.outcome.where(~below) >= 1).sum() == 24  # above it, every one rocks
