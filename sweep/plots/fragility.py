@@ -1,0 +1,243 @@
+"""Fragility figures from a fragility dataset (``sweep.probability.fragility``).
+
+``figure_curves``: per group (body), the probability of overturning at each level (or bin)
+with its confidence interval, and the fitted lognormal with its pointwise confidence band,
+against the intensity measure on a log axis (PGA in m/s² with g on top, PGV in cm/s).
+``figure_map``: per group, the two-parameter fragility Φ(b0 + b1 ln PGA + b2 ln PGV) as
+filled contours over (PGA, PGV) with the 0.1, 0.5 and 0.9 lines labelled, and the cells as
+markers, overturned or standing.
+"""
+import math
+import textwrap
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.lines import Line2D
+
+from kernels import codes
+
+from ..groundmotion.intensity import G
+from ..probability.fragility import describe_group, group_coords, group_indices
+from .style import plain_log_axis
+
+MAX_PANELS = 12  # more groups than this: this many, evenly spread over them
+COLUMNS = 3
+CM = 100.0  # cm per m
+# intensity measure -> (axis label, factor from SI to the plotted unit)
+IM_AXES = {
+    "pga": ("PGA [m/s²]", 1.0),
+    "pgv": ("PGV [cm/s]", CM),
+    "pga_norm": ("PGA / (g tan α)", 1.0),
+    "pgv_norm": ("PGV p / (g tan α)", 1.0),
+}
+IM_UNITS = {"pga": "m/s²", "pgv": "cm/s", "pga_norm": "", "pgv_norm": ""}
+PROBABILITY_LINES = (0.1, 0.5, 0.9)
+OVERTURNED_STYLE = {"marker": "^", "s": 24, "facecolors": "black", "edgecolors": "white",
+                    "linewidths": 0.5, "zorder": 3}
+STANDING_STYLE = {"marker": "o", "s": 18, "facecolors": "white", "edgecolors": "#08306b",
+                  "linewidths": 0.8, "zorder": 3}
+FIT_COLOUR, DATA_COLOUR = "#cb181d", "#08306b"
+BAND_METHODS = {"bootstrap": "BCa bootstrap over the members", "delta": "delta method"}
+CHARACTERS_PER_INCH = 13  # of a 10-point title line, for wrapping it to the figure's width
+
+
+def _shown_groups(frag):
+    """The groups drawn (at most ``MAX_PANELS``, evenly spread) and a note when not all."""
+    groups = group_indices(frag)
+    if len(groups) <= MAX_PANELS:
+        return list(range(len(groups))), groups, ""
+    chosen = np.unique(np.linspace(0, len(groups) - 1, MAX_PANELS).round().astype(int))
+    return list(chosen), groups, f" ({len(chosen)} of {len(groups)} groups shown)"
+
+
+def _panels(count):
+    """A figure of ``count`` panels sharing their axes, three to a row; its visible axes."""
+    columns = min(COLUMNS, count)
+    rows = math.ceil(count / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.8 * columns, 3.9 * rows + 0.9),
+                             layout="constrained", squeeze=False, sharex=True, sharey=True)
+    for ax in axes.flat[count:]:
+        ax.set_visible(False)
+    return fig, list(axes.flat[:count])
+
+
+def _interval_text(value, lower, upper, unit=""):
+    """"6.57 m/s² [5.94, 7.28]"."""
+    unit = f" {unit}" if unit else ""
+    return f"{value:.3g}{unit} [{lower:.3g}, {upper:.3g}]"
+
+
+def figure_curves(frag):
+    """Fragility curves of every group (panels): p̂ with intervals, the fit with its band.
+
+    Parameters
+    ----------
+    frag : xarray.Dataset
+        A fragility dataset.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    im = frag.attrs["intensity_measure"]
+    label, factor = IM_AXES[im]
+    binned = frag.attrs["level_dimension"] == "none"
+    interval = frag.attrs["interval_method"].split()[0]
+    shown, groups, note = _shown_groups(frag)
+    fig, axes = _panels(len(shown))
+    for ax, which in zip(axes, shown):
+        index = groups[which]
+        group = frag.isel(index)
+        p = group["p_overturned"].values
+        x = group["im_median"].values * factor
+        present = np.isfinite(p) & np.isfinite(x)
+        members = int(group["n_members"].max())
+        ax.errorbar(x[present], p[present],
+                    yerr=[p[present] - group["p_overturned_lower"].values[present],
+                          group["p_overturned_upper"].values[present] - p[present]],
+                    fmt="o", ms=4, color=DATA_COLOUR, ecolor=DATA_COLOUR, elinewidth=1,
+                    capsize=2.5, label=f"k/n at each {'bin' if binned else 'level'} "
+                                       f"(n ≤ {members}), {interval} interval")
+        grid = frag["im_grid"].values * factor
+        if int(group["fit_status"]) == 0:
+            ax.fill_between(grid, group["p_fit_lower"], group["p_fit_upper"],
+                            color=FIT_COLOUR, alpha=0.18, lw=0)
+            theta = [float(group[n]) * factor for n in ("theta", "theta_lower",
+                                                        "theta_upper")]
+            beta = [float(group[n]) for n in ("beta", "beta_lower", "beta_upper")]
+            ax.plot(grid, group["p_fit"], color=FIT_COLOUR, lw=1.6,
+                    label=f"θ = {_interval_text(*theta, IM_UNITS[im])}\n"
+                          f"β = {_interval_text(*beta)}")
+        else:
+            reason = _flag_meaning(frag["fit_status"], int(group["fit_status"]))
+            ax.text(0.03, 0.92, f"no lognormal fit: {reason.replace('_', ' ')}",
+                    transform=ax.transAxes, fontsize=8, va="top")
+        ax.set_title(describe_group(group_coords(frag, index)), fontsize=9)
+        ax.legend(fontsize=7.5, loc="upper left")
+        ax.grid(True, which="major", alpha=0.3)
+    first = axes[0]
+    first.set_xscale("log")
+    plain_log_axis(first.xaxis)
+    first.set_ylim(-0.03, 1.12)  # room for the legend above P = 1
+    _label_outer(axes, label, "P(overturning)")
+    if im == "pga":
+        for ax in axes[:COLUMNS]:
+            top = ax.secondary_xaxis("top", functions=(lambda a: a / G, lambda a: a * G))
+            plain_log_axis(top.xaxis)
+            top.set_xlabel("PGA [g]", fontsize=8)
+            top.tick_params(labelsize=8)
+    confidence = f"{float(frag.attrs['confidence']):.0%}"
+    band = BAND_METHODS[frag.attrs["fit_interval"]]
+    fig.suptitle(_title(fig, frag, "fragility curves" + note,
+                        f"{confidence} intervals; band of the fit by the {band}"), fontsize=10)
+    return fig
+
+
+def _label_outer(axes, xlabel, ylabel):
+    """Axis labels on the panels at the bottom of each column and the left of each row;
+    tick labels under every panel with none below it (shared axes hide them)."""
+    for ax in axes:
+        spec = ax.get_subplotspec()
+        if spec.num1 + spec.get_gridspec().ncols >= len(axes):  # no panel below
+            ax.set_xlabel(xlabel)
+            ax.xaxis.set_tick_params(labelbottom=True)
+        if spec.is_first_col():
+            ax.set_ylabel(ylabel)
+
+
+def _flag_meaning(da, code):
+    meanings = da.attrs["flag_meanings"].split()
+    return meanings[list(np.asarray(da.attrs["flag_values"])).index(code)]
+
+
+def _title(fig, frag, what, details):
+    """The study and what is drawn; the ensemble, ``details`` and the failed cells, wrapped
+    to the figure's width."""
+    levels = frag.attrs["level_dimension"]
+    along = f", levels {levels}" if levels != "none" else ", binned in ln IM"
+    width = int(CHARACTERS_PER_INCH * fig.get_figwidth())
+    return "\n".join([f"{frag.attrs.get('input_title') or 'study'}: {what}", *textwrap.wrap(
+        f"members over {frag.attrs['ensemble_dimensions']}{along}; {details}; "
+        f"{frag.attrs['failed_cells']} failed cells left out", width)])
+
+
+def figure_map(frag, pga, pgv, outcome):
+    """Two-parameter fragility maps over (PGA, PGV), one panel per group.
+
+    Parameters
+    ----------
+    frag : xarray.Dataset
+        A fragility dataset with ``surface_coefficient``.
+    pga, pgv : ndarray, shape (groups, levels, members)
+        PGA [m/s²] and PGV [m/s] of the cells, groups in the order of ``frag``.
+    outcome : ndarray of int, shape (groups, levels, members)
+        Their outcome codes (failed cells are not drawn).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    shown, groups, note = _shown_groups(frag)
+    fig, axes = _panels(len(shown))
+    counted = outcome != codes.FAILED
+    usable = counted & (pga > 0) & (pgv > 0)
+    x_range = _log_range(pga[usable])
+    y_range = _log_range(pgv[usable] * CM)
+    grid_x, grid_y = np.meshgrid(np.geomspace(*x_range, 120), np.geomspace(*y_range, 120))
+    filled = None
+    for ax, which in zip(axes, shown):
+        index = groups[which]
+        group = frag.isel(index)
+        b0, b1, b2 = group["surface_coefficient"].values
+        if int(group["surface_status"]) == 0:
+            from scipy.special import ndtr
+            surface = ndtr(b0 + b1 * np.log(grid_x) + b2 * np.log(grid_y / CM))
+            filled = ax.contourf(grid_x, grid_y, surface, levels=np.linspace(0, 1, 11),
+                                 cmap="YlOrRd", alpha=0.85)
+            lines = ax.contour(grid_x, grid_y, surface, levels=PROBABILITY_LINES,
+                               colors="k", linewidths=(0.8, 1.4, 0.8))
+            ax.clabel(lines, fmt=lambda v: f"P = {v:g}", fontsize=7.5)
+        else:
+            reason = _flag_meaning(frag["surface_status"], int(group["surface_status"]))
+            ax.text(0.03, 0.95, f"no surface fit: {reason.replace('_', ' ')}",
+                    transform=ax.transAxes, fontsize=8, va="top")
+        over = usable[which] & (outcome[which] == codes.OVERTURN)
+        stand = usable[which] & (outcome[which] != codes.OVERTURN)
+        ax.scatter(pga[which][stand], pgv[which][stand] * CM, **STANDING_STYLE)
+        ax.scatter(pga[which][over], pgv[which][over] * CM, **OVERTURNED_STYLE)
+        ax.set_title(describe_group(group_coords(frag, index)), fontsize=9)
+    first = axes[0]
+    first.set_xscale("log")
+    first.set_yscale("log")
+    plain_log_axis(first.xaxis)
+    plain_log_axis(first.yaxis)
+    first.set_xlim(*x_range)
+    first.set_ylim(*y_range)
+    _label_outer(axes, "PGA [m/s²]", "PGV [cm/s]")
+    handles = [Line2D([], [], ls="", **_legend_marker(OVERTURNED_STYLE), label="overturned"),
+               Line2D([], [], ls="", **_legend_marker(STANDING_STYLE), label="standing")]
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8,
+               frameon=False)
+    if filled is not None:
+        fig.colorbar(filled, ax=list(axes), label="P(overturning) = "
+                     "Φ(b0 + b1 ln PGA + b2 ln PGV)", shrink=0.9)
+    fig.suptitle(_title(fig, frag, "two-parameter fragility over (PGA, PGV)" + note,
+                        "probit fit to every cell"), fontsize=10)
+    return fig
+
+
+def _log_range(values):
+    """(low, high) around positive ``values`` with a margin of 15 % in the log."""
+    if values.size == 0:
+        return 0.1, 10.0
+    low, high = np.log(values.min()), np.log(values.max())
+    margin = max(0.15 * (high - low), np.log(1.2))
+    return math.exp(low - margin), math.exp(high + margin)
+
+
+def _legend_marker(style):
+    """Line2D keywords drawing a scatter ``style``'s marker."""
+    face = style.get("facecolors", style.get("color"))
+    edge = style.get("edgecolors", face)
+    return {"marker": style["marker"], "markersize": math.sqrt(style["s"]),
+            "markerfacecolor": face, "markeredgecolor": edge}
