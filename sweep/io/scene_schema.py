@@ -181,17 +181,35 @@ class _Scaled(_Ground):
         return self
 
 
+def _component(value):
+    """A component of a record file: its number (from 1) or its name."""
+    if isinstance(value, bool) or not isinstance(value, (int, str)):
+        raise ValueError("must be a component's number (1, 2, ...) or its name")
+    if isinstance(value, int) and value < 1:
+        raise ValueError("component numbers start at 1")
+    if isinstance(value, str) and not value.strip():
+        raise ValueError("must not be empty")
+    return value
+
+
 class RecordMotion(_Scaled):
     """A bundled record (``name``) or a user's file (``path``), scaled by ``scale`` or to ``pga``
     or ``pgv``.
 
-    ``units`` is the acceleration unit of a two-column file (default m/s^2); ``.AT2`` files are
-    in g.  A relative ``path`` is taken from the scene file's folder.
+    A file's format (``records.FORMATS``) is told by its extension or content unless ``format``
+    names it (docs/record_formats.md).  ``units`` is the acceleration unit of a two- or
+    one-column file (default m/s^2); the other formats give theirs.  ``dt`` is the sample step
+    of a one-column file, required there only; ``component`` picks one of the components of a
+    COSMOS or CSMIP file, by number or name.  A relative ``path`` is taken from the scene
+    file's folder.
     """
 
     kind: Literal["record"]
     name: Optional[str] = None
     units: Optional[str] = None
+    format: Optional[Literal[records.FORMATS]] = None
+    dt: Optional[Duration] = None
+    component: Optional[Annotated[Union[int, str], PlainValidator(_component)]] = None
     path: Optional[str] = None
 
     @field_validator("name")
@@ -215,10 +233,11 @@ class RecordMotion(_Scaled):
             return None
         base = Path((info.context or {}).get("base_dir") or ".")
         full = (base / Path(path).expanduser()).resolve()
-        try:
-            records.read_record_file(full, info.data.get("units"))
-        except records.RecordError as err:
-            raise ValueError(str(err)) from None
+        if all(key in info.data for key in _FILE_OPTIONS):  # else an option's own error says it
+            try:
+                _read_file(full, info.data)
+            except records.RecordError as err:
+                raise ValueError(str(err)) from None
         return str(full)
 
     @model_validator(mode="after")
@@ -228,9 +247,22 @@ class RecordMotion(_Scaled):
                               "required: name (a bundled record) or path (a file)")
         if self.name is not None and self.path is not None:
             raise FieldError("path", self.path, "give either name or path, not both")
-        if self.units is not None and self.path is None:
-            raise FieldError("units", self.units, "units apply to a path: file only")
+        for key in _FILE_OPTIONS:
+            if getattr(self, key) is not None and self.path is None:
+                raise FieldError(key, str(getattr(self, key)), "given for a path: file only")
         return self
+
+
+_FILE_OPTIONS = ("units", "format", "dt", "component")
+
+
+def _read_file(path, options):
+    """The :class:`~sweep.io.records.Record` of a record file with the options of a
+    :class:`RecordMotion` (``units``, ``format``, ``dt``, ``component`` in ``options``)."""
+    dt = options["dt"]
+    return records.read_record_file(path, options["units"], format=options["format"],
+                                    dt=None if dt is None else dt.to_si(),
+                                    component=options["component"])
 
 
 class SyntheticMotion(_Scaled):
@@ -435,7 +467,7 @@ def _accelerogram(g):
         except ValueError as err:
             raise FileProblems([Problem("model", g.model, str(err))]) from None
     return (records.load_record(g.name) if g.name is not None
-            else records.read_record_file(g.path, g.units))
+            else _read_file(g.path, {key: getattr(g, key) for key in _FILE_OPTIONS}))
 
 
 def _scale(g, rec, body):

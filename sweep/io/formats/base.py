@@ -1,0 +1,171 @@
+"""What a record reader returns, and the checks every reader shares.
+
+A reader turns one file into a :class:`Record`: uniformly sampled acceleration in m/s^2.  A file
+it cannot take raises :class:`RecordError` with a message that starts with the file's path and,
+where one line is at fault, names it (``line 23: expected 8 integers, got 'abc'``).
+"""
+import functools
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+# Most samples a record may have once on its uniform grid: 80 MB of float64, 28 hours at
+# dt = 0.01 s.  A file of a few rows whose median step is tiny would otherwise be resampled
+# into terabytes.
+MAX_SAMPLES = 10_000_000
+_MAX_VALUES = 2 * MAX_SAMPLES  # numbers a file may hold: two columns of MAX_SAMPLES rows
+
+
+class RecordError(ValueError):
+    """A record name is unknown or a record file cannot be read."""
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """A uniformly sampled acceleration record.
+
+    Attributes
+    ----------
+    name : str
+        Bundled name, or the file's path.
+    dt : float
+        Sample step [s].
+    samples : ndarray, shape (n,)
+        Acceleration [m/s^2], read-only.
+    provenance : str
+        Where the data come from and what was done to them.
+    """
+
+    name: str
+    dt: float
+    samples: np.ndarray
+    provenance: str
+
+    @property
+    def pga(self):
+        """Peak absolute acceleration [m/s^2]."""
+        return float(np.max(np.abs(self.samples)))
+
+    @functools.cached_property
+    def intensity(self):
+        """:class:`~sweep.groundmotion.intensity.Intensity` of the samples (scale 1)."""
+        from ...groundmotion.intensity import measures
+        return measures(self.samples, self.dt)
+
+    @property
+    def duration(self):
+        """Time from the first to the last sample [s]."""
+        return self.dt * (len(self.samples) - 1)
+
+
+def line_error(path, number, message):
+    """The :class:`RecordError` of line ``number`` (counted from 1) of ``path``."""
+    return RecordError(f"{path}: line {number}: {message}")
+
+
+def read_lines(path):
+    """The lines of a text file up to a DOS end-of-file mark (Ctrl-Z, in files of the 1980s);
+    bytes that are not UTF-8 become U+FFFD and fail as numbers."""
+    try:
+        text = Path(path).read_text(errors="replace")
+    except OSError as err:
+        raise RecordError(f"{path}: cannot read: {err.strerror or err}") from None
+    return text.split("\x1a", 1)[0].splitlines()
+
+
+def parse_lines(lines, numbers, path, *, split=str.split, parse=float,
+                bad="{token!r} is not a number"):
+    """The numbers written on ``lines``, line by line.
+
+    Parameters
+    ----------
+    lines : sequence of str
+    numbers : sequence of int
+        The file's line number of each of ``lines``, for messages.
+    path : str or Path
+    split : callable
+        Line to its fields (default: at white space; :func:`fixed_width` for Fortran fields).
+    parse : callable
+        Field to number: ``float`` or ``int``.
+    bad : str
+        Message for a field that ``parse`` refuses, formatted with ``token``.
+
+    Returns
+    -------
+    values : ndarray, shape (n,)
+        float64, in the order written.
+    counts : ndarray of int, shape (len(lines),)
+        How many values each line holds.
+    """
+    values, counts = [], []
+    for number, line in zip(numbers, lines):
+        tokens = split(line)
+        try:
+            values.extend(map(parse, tokens))
+        except ValueError:
+            token = next(t for t in tokens if not _parses(parse, t))
+            raise line_error(path, number, bad.format(token=token.strip())) from None
+        counts.append(len(tokens))
+        if len(values) > _MAX_VALUES:
+            raise line_error(path, number, f"more than {_MAX_VALUES} values")
+    return np.array(values, dtype=np.float64), np.array(counts, dtype=np.int64)
+
+
+def _parses(parse, token):
+    try:
+        parse(token)
+    except ValueError:
+        return False
+    return True
+
+
+def fixed_width(width):
+    """Splitter of a line into consecutive fields ``width`` characters wide (Fortran ``F10.6``)."""
+    def split(line):
+        line = line.rstrip()
+        return [line[k:k + width] for k in range(0, len(line), width)]
+    return split
+
+
+def check_counts(counts, expected, numbers, path, message):
+    """Refuse the first line whose count of values is not ``expected`` (an int, or one per line);
+    ``message`` is formatted with ``expected`` and ``found``."""
+    expected = np.broadcast_to(expected, counts.shape)
+    bad = np.flatnonzero(counts != expected)
+    if bad.size:
+        k = bad[0]
+        raise line_error(path, numbers[k], message.format(expected=expected[k], found=counts[k]))
+
+
+def check_finite(values, line_of, path, what="value"):
+    """Refuse NaN and infinite values (written as nan, inf or beyond the float range), naming
+    the line (``line_of[k]`` holds value k) and the value's place: ``what`` k."""
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        k = bad[0]
+        raise line_error(path, line_of[k], f"{what} {k + 1} is not a finite number: {values[k]}")
+
+
+def make_record(path, dt, samples, provenance):
+    """The :class:`Record` of a file: ``samples`` [m/s^2] every ``dt`` [s], checked and frozen.
+
+    Raises
+    ------
+    RecordError
+        Fewer than two samples or more than :data:`MAX_SAMPLES`, a step that is not a positive
+        finite number, or a sample that left the float range in the conversion to m/s^2.
+    """
+    if len(samples) < 2:
+        raise RecordError(f"{path}: needs at least two samples")
+    if len(samples) > MAX_SAMPLES:
+        raise RecordError(f"{path}: {len(samples)} samples, more than {MAX_SAMPLES}")
+    if not 0.0 < dt < np.inf:
+        raise RecordError(f"{path}: the sample step must be a positive number of seconds, "
+                          f"got {dt}")
+    samples = np.ascontiguousarray(samples, dtype=np.float64)
+    bad = np.flatnonzero(~np.isfinite(samples))
+    if bad.size:
+        raise RecordError(f"{path}: sample {bad[0] + 1} leaves the float range in m/s^2")
+    samples.flags.writeable = False
+    return Record(str(path), float(dt), samples, provenance)
