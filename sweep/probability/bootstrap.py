@@ -155,10 +155,10 @@ def bca_interval(estimate, replicates, jackknife, weights, confidence):
     below = (np.sum(replicates < estimate, axis=-1)
              + 0.5 * np.sum(replicates == estimate, axis=-1)) / count
     bias = ndtri(np.clip(below, 0.5 / count, 1.0 - 0.5 / count))  # z0
-    deviation = np.sum(weights * jackknife, axis=-1, keepdims=True) / np.sum(weights) \
-        - jackknife
-    spread = np.sum(weights * deviation ** 2, axis=-1)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # no jackknife value: a = 0
+        deviation = np.sum(weights * jackknife, axis=-1, keepdims=True) / np.sum(weights) \
+            - jackknife
+        spread = np.sum(weights * deviation ** 2, axis=-1)
         acceleration = np.where(spread > 0, np.sum(weights * deviation ** 3, axis=-1)
                                 / (6.0 * spread ** 1.5), 0.0)
     z = ndtri(0.5 + 0.5 * confidence)
