@@ -28,6 +28,8 @@ from .problems import (MISSING, FieldError, FileProblems, Problem, join_path,
 from .yamlio import parse_yaml, read_text, top_level_problems
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
+MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
+SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks within 1.3 %
 KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic")
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
@@ -322,7 +324,8 @@ class Initial(StrictModel):
 
 
 class Solver(StrictModel):
-    """Integrator and guards (PHYSICS.md 3); ``t_end`` defaults from the excitation."""
+    """Integrator and guards (PHYSICS.md 3); ``t_end`` and ``dt_out`` (the history's sampling)
+    default from the excitation."""
 
     method: Optional[Literal["adaptive", "fixed"]] = None
     rtol: Optional[Annotated[Real, Field(gt=0)]] = None
@@ -518,6 +521,24 @@ def _end(ground):
     return ground["start"] + length
 
 
+def _history_dt(grounds, t_end):
+    """Default sampling of a history: ``DEFAULTS["solver"]["dt_out"]``, or finer to keep every
+    peak of the floor motion (the finest record ``dt``; 1/``SAMPLES_PER_PERIOD`` of the period
+    of a sine or of a sweep's highest frequency, of a pulse's length), yet coarse enough for
+    ``t_end`` to take ``MAX_HISTORY`` samples at most."""
+    dt = DEFAULTS["solver"]["dt_out"]
+    for ground in grounds:
+        if ground["kind"] == "record":
+            dt = min(dt, ground["dt"])
+        elif ground["kind"] == "sine":
+            dt = min(dt, 1.0 / (SAMPLES_PER_PERIOD * ground["frequency"]))
+        elif ground["kind"] == "sweep":
+            dt = min(dt, 1.0 / (SAMPLES_PER_PERIOD * max(ground["f_start"], ground["f_stop"])))
+        elif ground["kind"] == "pulse":
+            dt = min(dt, ground["duration"] / SAMPLES_PER_PERIOD)
+    return max(dt, t_end / (MAX_HISTORY - 1))  # one sample short of the limit: no rounding over
+
+
 def resolve_scene(scene):
     """The resolved SI scene dict of ``kernels/api.py`` for a checked scene.
 
@@ -535,7 +556,9 @@ def resolve_scene(scene):
         read-only], ``dt``, ``scale`` (from ``pga`` or ``pgv`` if given) and ``source``, the
         :class:`~sweep.io.records.Record`.  A ``seed`` of a sine or sweep is resolved into
         its ``phase``.  Without ``solver.t_end``: the end of the excitation + 5 s when every component
-        ends, else ``DEFAULTS["solver"]["t_end"]``.
+        ends, else ``DEFAULTS["solver"]["t_end"]``.  Without ``solver.dt_out``: the finest record
+        ``dt`` or 1/20 of the shortest sine or sweep period (or pulse), at most
+        ``DEFAULTS["solver"]["dt_out"]`` (0.02 s), at least ``t_end / MAX_HISTORY``.
 
     Raises
     ------
@@ -574,6 +597,8 @@ def resolve_scene(scene):
         ends = [e for e in map(_end, excitation.values()) if e is not None]
         if ends and all(math.isfinite(e) for e in ends):
             solver["t_end"] = max(ends) + T_TAIL
+    if scene.solver.dt_out is None:
+        solver["dt_out"] = _history_dt(excitation.values(), solver["t_end"])
     resolved = {"body": body, "contact": contact, "excitation": excitation,
                 "initial": initial, "solver": solver}
     _check_packable(resolved, scene)
