@@ -377,6 +377,10 @@ def refine_dataset(study, arrays, *, rounds, history=None):
     return xr.Dataset(data, coords=_coords(study), attrs=attrs)
 
 
+def _nan_for_none(value):
+    return np.nan if value is None else value
+
+
 def history_dataset(history, scene, source=None, result=None):
     """The time history of one scene: a Dataset with dimension ``time``.
 
@@ -390,8 +394,11 @@ def history_dataset(history, scene, source=None, result=None):
         The scene file, for the ``source`` attribute.
     result : SceneResult, optional
         The scene's result: its ``impact_count``, ``impact_log_truncated`` (1 when the
-        result's impact log holds fewer impacts, else 0) and ``energy_clamps`` become
-        attributes.
+        result's impact log holds fewer impacts, else 0), ``energy_clamps`` and what the body
+        did become attributes: ``status`` (its name), ``t_overturn`` and ``t_rest`` (NaN when
+        none), ``overturn_direction`` (0 when none), ``max_abs_theta``, ``max_slip``,
+        ``max_lift`` (units of ``VARIABLES``) and ``mode_time`` [s], one per motion type in the
+        order of the ``flag_meanings`` of ``mode``.
     """
     import xarray as xr
 
@@ -405,7 +412,12 @@ def history_dataset(history, scene, source=None, result=None):
     if result is not None:
         attrs.update(impact_count=result.impact_count,
                      impact_log_truncated=int(result.impact_log_truncated),
-                     energy_clamps=result.energy_clamps)
+                     energy_clamps=result.energy_clamps, status=result.status,
+                     t_overturn=_nan_for_none(result.t_overturn),
+                     overturn_direction=result.overturn_direction or 0,
+                     max_abs_theta=result.max_abs_theta, max_slip=result.max_slip,
+                     max_lift=result.max_lift, t_rest=_nan_for_none(result.t_rest),
+                     mode_time=np.array([result.mode_time[m] for m in codes.MODE_NAMES]))
     return xr.Dataset(data, coords={TIME[0]: (TIME[0], np.asarray(history["t"]), TIME[1])},
                       attrs=attrs)
 

@@ -20,7 +20,8 @@ The decorated ``main`` returns the exit status instead of a traceback when
   under ``set -o pipefail`` the command thus counts as those do;
 * the user presses Ctrl-C: one line ``interrupted`` on stderr, status 130 = 128 + SIGINT.
 
-``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``.
+``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``; a long
+list can be kept on one line, so that a reader sees the keys before the arrays.
 """
 import functools
 import json
@@ -65,7 +66,18 @@ def jsonable(value):
     return value
 
 
-def print_json(value):
-    """Print ``value`` as one standard JSON document (``jsonable``) on stdout."""
-    json.dump(jsonable(value), sys.stdout, indent=1, allow_nan=False)
-    print()
+def print_json(value, one_line_per_key=False):
+    """Print ``value`` as one standard JSON document (``jsonable``) on stdout; with
+    ``one_line_per_key``, a dict is written one key a line, its value (lists and dicts
+    included) on that line."""
+    value = jsonable(value)
+    if not one_line_per_key:
+        json.dump(value, sys.stdout, indent=1, allow_nan=False)
+        print()
+        return
+    print("{")
+    last = len(value) - 1
+    for k, (key, item) in enumerate(value.items()):
+        comma = "," if k < last else ""
+        print(f" {json.dumps(key)}: {json.dumps(item, allow_nan=False)}{comma}")
+    print("}")

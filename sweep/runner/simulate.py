@@ -3,24 +3,33 @@
 The result carries the JSON fields of DESIGN.md section 4 as attributes and, when asked, the
 history as an xarray Dataset (``cf.history_dataset``).
 """
+import math
 from collections import namedtuple
 
 from kernels.api import MAX_LOG, SceneResult
 
 from ..groundmotion import applied
+from ..groundmotion.intensity import G
 from ..io.problems import FileProblems, Problem
-from ..io.scene_schema import load_scene, resolve_scene
+from ..io.scene_schema import MAX_HISTORY, load_scene, resolve_scene
+from .verdict import verdict
 
-MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
-
+# The keys of DESIGN.md section 4 that scripts read: every one is in the JSON.
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
              "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
              "steps", "cpu_s")
 MOTION_KEYS = ("pga", "pgv", "pgd")
+# The JSON's order: the verdict and the numbers that sum the scene up, then the per-impact arrays.
+SUMMARY_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "message",
+                "max_abs_theta", "alpha", "max_slip", "max_lift", *MOTION_KEYS, "t_rest",
+                "mode_time", "impact_count", "impact_log_truncated", "energy_clamps", "steps",
+                "cpu_s")
+IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
 
-Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS)
-Result.__doc__ = """The kernel's ``SceneResult`` and the peaks of the horizontal motion applied:
-``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``)."""
+Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS + ("B", "H", "alpha"))
+Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
+``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), and the body:
+breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad]."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
@@ -41,7 +50,9 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     if history:
         _check_history(resolved, None if isinstance(scene, dict) else scene)
     motion = applied.peaks(resolved["excitation"]["horizontal"])
-    result = Result(*run_scene(resolved, history=history, max_log=max_log), *motion[:3])
+    B, H = resolved["body"]["B"], resolved["body"]["H"]
+    result = Result(*run_scene(resolved, history=history, max_log=max_log), *motion[:3], B, H,
+                    math.atan2(B, H))
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
@@ -61,19 +72,19 @@ def _check_history(resolved, source):
                                     f"than {MAX_HISTORY}: give a larger dt_out")], source)
 
 
-def summary_line(result):
-    """One line on what the body did: status, impacts, largest rotation, CPU time."""
-    return (f"{result.status}: {result.message}; {result.impact_count} impacts, "
-            f"max |theta| {result.max_abs_theta:.4g} rad, cpu {result.cpu_s * 1e3:.2f} ms")
+def summary(result):
+    """Two lines: what the body did (``verdict.verdict``), then the end status with its
+    message, the peaks of the horizontal floor motion and the CPU time."""
+    floor = (f"floor PGA {result.pga / G:.3g} g, PGV {result.pgv * 100:.3g} cm/s"
+             if result.pga > 0 else "horizontal floor still")
+    return (f"{verdict(result._asdict())}\n{result.status}: {result.message}; {floor}; "
+            f"cpu {result.cpu_s * 1e3:.2f} ms")
 
 
 def to_json_dict(result):
-    """The JSON contract of DESIGN.md section 4, plus the end status message, the impact
-    count (``impact_times`` holds the first ``impact_count`` impacts only when
-    ``impact_log_truncated``), the impacts whose restitution was clamped, and the peaks of the
-    horizontal motion applied."""
-    out = {key: getattr(result, key) for key in JSON_KEYS}
-    for key in ("message", "impact_slipped", "impact_count", "impact_log_truncated",
-                "energy_clamps", *MOTION_KEYS):
-        out[key] = getattr(result, key)
-    return out
+    """The JSON of a scene, in the order of ``SUMMARY_KEYS`` then ``IMPACT_KEYS``: the contract
+    of DESIGN.md section 4 (``JSON_KEYS``) plus the end status message, the slenderness angle,
+    the impact count (``impact_times`` holds the first ``impact_count`` impacts only when
+    ``impact_log_truncated``), the impacts whose restitution was clamped, the peaks of the
+    horizontal motion applied, and whether each impact slipped."""
+    return {key: getattr(result, key) for key in SUMMARY_KEYS + IMPACT_KEYS}

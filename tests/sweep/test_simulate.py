@@ -7,7 +7,7 @@ import pytest
 from study_helpers import cli
 
 import sweep
-from sweep.runner.simulate import simulate, summary_line, to_json_dict
+from sweep.runner.simulate import simulate, summary, to_json_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -59,7 +59,7 @@ def test_truncated_impact_log_is_flagged():
     assert data["impact_log_truncated"] is True and len(data["impact_times"]) == 10
     assert data["impact_times"] == full.impact_times[:10]
     assert "impact log truncated at 10 of 79 impacts" in data["message"]
-    assert "79 impacts" in summary_line(cut)
+    assert "79 impacts" in summary(cut)
     assert cut.history.attrs["impact_count"] == 79
     assert cut.history.attrs["impact_log_truncated"] == 1
     whole = to_json_dict(full)
@@ -89,7 +89,8 @@ def test_scene_outputs_are_checked_before_any_work(tmp_path):
 def test_a_history_too_long_to_hold_is_refused_before_the_run():
     from sweep.io.problems import FileProblems
     from sweep.runner.simulate import MAX_HISTORY
-    scene = {"body": {"B": 0.1, "H": 0.3}, "solver": {"t_end": 1e7}}  # dt_out 0.02 s: 5e8
+    # dt_out given: a default dt_out would be coarsened to fit (test_outputs.py)
+    scene = {"body": {"B": 0.1, "H": 0.3}, "solver": {"t_end": 1e7, "dt_out": 0.02}}  # 5e8
     with pytest.raises(FileProblems, match="solver.dt_out: a history over t_end = 1e.07 s"):
         simulate(scene, history=True)
     assert 1e7 / 0.02 > MAX_HISTORY
