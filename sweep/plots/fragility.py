@@ -156,7 +156,8 @@ def _title(fig, frag, what, details):
     levels = frag.attrs["level_dimension"]
     along = f", levels {levels}" if levels != "none" else ", binned in ln IM"
     width = int(CHARACTERS_PER_INCH * fig.get_figwidth())
-    return "\n".join([f"{frag.attrs.get('input_title') or 'study'}: {what}", *textwrap.wrap(
+    return "\n".join([*textwrap.wrap(f"{frag.attrs.get('input_title') or 'study'}: {what}",
+                                     width), *textwrap.wrap(
         f"members over {frag.attrs['ensemble_dimensions']}{along}; {details}; "
         f"{frag.attrs['failed_cells']} failed cells left out", width)])
 
@@ -189,9 +190,12 @@ def figure_map(frag, pga, pgv, outcome):
         index = groups[which]
         group = frag.isel(index)
         b0, b1, b2 = group["surface_coefficient"].values
+        west = float(group["west_acceleration"]) if "west_acceleration" in group else np.nan
         if int(group["surface_status"]) == 0:
             from scipy.special import ndtr
             surface = ndtr(b0 + b1 * np.log(grid_x) + b2 * np.log(grid_y / CM))
+            if np.isfinite(west):  # no rocking below West's acceleration (Eq. 1)
+                surface = np.where(grid_x < west, 0.0, surface)
             filled = ax.contourf(grid_x, grid_y, surface, levels=np.linspace(0, 1, 11),
                                  cmap="YlOrRd", alpha=0.85)
             lines = ax.contour(grid_x, grid_y, surface, levels=PROBABILITY_LINES,
@@ -205,6 +209,10 @@ def figure_map(frag, pga, pgv, outcome):
         stand = usable[which] & (outcome[which] != codes.OVERTURN)
         ax.scatter(pga[which][stand], pgv[which][stand] * CM, **STANDING_STYLE)
         ax.scatter(pga[which][over], pgv[which][over] * CM, **OVERTURNED_STYLE)
+        if np.isfinite(west):
+            ax.axvline(west, color="k", ls="--", lw=1)
+            ax.annotate("West: (B/H) g", (west, 1.0), xycoords=("data", "axes fraction"),
+                        xytext=(3, -12), textcoords="offset points", fontsize=7.5)
         ax.set_title(describe_group(group_coords(frag, index)), fontsize=9)
     first = axes[0]
     first.set_xscale("log")

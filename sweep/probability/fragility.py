@@ -93,6 +93,10 @@ FRAGILITY_VARIABLES = {
     "surface_status": cf.Variable("int8", "1", "status of the two-parameter fit",
                                   (tuple(range(len(fitting.FIT_STATUS_NAMES))),
                                    fitting.FIT_STATUS_NAMES)),
+    "west_acceleration": cf.Variable(
+        "float64", "m s-2", "West's acceleration (B/H) g of the group's body",
+        comment="no rocking, hence no overturning, below it without vertical motion (Eq. 1); "
+                "the surface is fitted above it when no cell below it overturned"),
 }
 
 
@@ -248,7 +252,9 @@ def fragility(ds, over, im, levels=AUTO, *, bins=DEFAULT_BINS, confidence=0.95,
     surface = "pga" in ds.variables and "pgv" in ds.variables
     if surface:
         pga, pgv = (cells(ds, over, name, levels).im for name in ("pga", "pgv"))
-        arrays.update(_surfaces(pga, pgv, data.outcome, counted))
+        west = (pga / cells(ds, over, "pga_norm", levels).im if "pga_norm" in ds.variables
+                else np.full(pga.shape, np.nan))
+        arrays.update(_surfaces(pga, pgv, west, data.outcome, counted))
     axis = im_attrs(ds, im)
     group_dims = data.dims[:-2]
     group_shape = tuple(ds.sizes[d] for d in group_dims)
@@ -361,16 +367,26 @@ def _fits(data, counted, grid, confidence, fit_interval, replicates, seed):
     return {**out, **curves}
 
 
-def _surfaces(pga, pgv, outcome, counted):
-    """The two-parameter fit of each group: coefficients and status."""
+def _surfaces(pga, pgv, west, outcome, counted):
+    """The two-parameter fit of each group: coefficients, status and West's acceleration.
+
+    Below West's acceleration ``west`` a body does not rock without vertical motion: when no
+    cell of the group below it overturned, the surface is fitted to the cells above it, so
+    that the probit's tail does not spread overturning into the region where it cannot be.
+    """
     coefficients = np.full((outcome.shape[0], len(SURFACE_TERMS)), np.nan)
     status = np.zeros(outcome.shape[0])
+    a_west = np.full(outcome.shape[0], np.nan)
     for group in range(outcome.shape[0]):
-        result = fitting.fit_surface(pga[group], pgv[group],
-                                     outcome[group] == codes.OVERTURN,
-                                     counted[group].astype(float))
+        over = outcome[group] == codes.OVERTURN
+        a_west[group] = np.nanmedian(west[group]) if np.isfinite(west[group]).any() else np.nan
+        fitted = counted[group].astype(float)
+        if np.isfinite(a_west[group]) and not np.any(over & (pga[group] < a_west[group])):
+            fitted = fitted * (pga[group] >= a_west[group])
+        result = fitting.fit_surface(pga[group], pgv[group], over, fitted)
         coefficients[group], status[group] = result.coefficients, result.status
-    return {"surface_coefficient": coefficients, "surface_status": status}
+    return {"surface_coefficient": coefficients, "surface_status": status,
+            "west_acceleration": a_west}
 
 
 def _global_attrs(ds, over, im, levels, bins, confidence, interval, fit_interval, replicates,
