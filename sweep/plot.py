@@ -7,7 +7,10 @@ from the datasets (``sweep.paper.classify``: the overturned cells simulated agai
 to the drawing.  Figures of ``WITHOUT_DATASET`` are closed forms and take no RESULT
 (``python -m sweep.plot --figure fig17 -o fig17.png``).  Figures of ``SEVERAL`` take one or
 more RESULTs (e.g. one sweep study per kind of sweep) and receive the list of their Datasets.
-The backend is ``Agg``, chosen by :func:`main`, never on import of ``sweep.plots``.
+A refine study's dataset is drawn by ``map`` or ``boundary``; a figure that does not fit its
+datasets (:func:`misfit`, or a ``KeyError``/``ValueError`` of the drawing) is one line on
+stderr and exit status 2.  The backend is ``Agg``, chosen by :func:`main`, never on import of
+``sweep.plots``.
 """
 import argparse
 import sys
@@ -15,13 +18,15 @@ from contextlib import ExitStack
 from functools import partial
 from pathlib import Path
 
+import yaml
+
 from .cli import command
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .paper import classify
 from .plots.histories import figure_history
 from .plots.limits import figure_limits
-from .plots.map import figure_map
+from .plots.map import figure_boundary, figure_map
 from .plots.records import figure_record_map, figure_summary
 from .plots.spectra import figure_spectrum
 from .plots.style import save_figure
@@ -41,6 +46,7 @@ def histories(datasets, figure, known=None):
 
 FIGURES = {
     "map": figure_map,  # outcome map: amplitude vs frequency, one panel per other axis value
+    "boundary": figure_boundary,  # a refine study's boundary against another axis ("map" too)
     "fig17": figure_limits,  # lower limits a_o, v_o, d_o and T_c against body size
     "fig18": figure_record_map,  # bodies, H vs H/B, under El Centro NS (+UD)
     "fig19": figure_record_map,  # ... under Taft EW
@@ -59,6 +65,32 @@ FIGURES = {
 WITHOUT_DATASET = {"fig17"}  # drawn from sweep.paper.criteria alone
 SEVERAL = {f"fig{k:02d}" for k in range(8, 17)}  # drawn from a list of sweep datasets
 CLASSIFIED = {f"fig{k}" for k in range(11, 17)}  # take ``known=`` classifications (Figs 11-16)
+REFINE_FIGURES = {"map", "boundary"}  # the figures that draw a refine study's boundaries
+
+
+def _horizontal_kind(ds):
+    """Kind of the horizontal excitation of the study's base scene (``study`` attribute)."""
+    study = yaml.safe_load(ds.attrs.get("study", "")) or {}
+    scene = study.get("scene") or {}
+    return ((scene.get("excitation") or {}).get("horizontal") or {}).get("kind", "none")
+
+
+def misfit(figure, path, ds):
+    """Why ``figure`` cannot be drawn from the dataset ``ds`` read from ``path`` (one line),
+    or None: a refine study's boundaries are drawn by ``REFINE_FIGURES`` only, ``boundary``
+    needs them, Figs 8-16 need frequency sweeps."""
+    refined = "boundary" in ds
+    if refined and figure not in REFINE_FIGURES:
+        return (f"{path} holds a refine study's boundaries, not the cells --figure {figure} "
+                f"draws: --figure map or boundary draws it")
+    if not refined and figure == "boundary":
+        return (f"{path} holds no boundaries (it is not the result of a refine study): "
+                "--figure map draws its outcomes")
+    kind = _horizontal_kind(ds)
+    if figure in SEVERAL and kind != "sweep":
+        return (f"{path}: --figure {figure} draws studies of frequency sweeps; this study's "
+                f"horizontal excitation is of kind {kind}")
+    return None
 
 
 def draw(figure, datasets, **options):
@@ -107,11 +139,17 @@ def main(argv=None):
             except (OSError, ValueError) as err:
                 print(f"{path}: cannot open as a netCDF dataset: {err}", file=sys.stderr)
                 return EXIT_BAD_INPUT
+        for path, ds in zip(args.result, datasets):
+            why = misfit(args.figure, path, ds)
+            if why:
+                print(why, file=sys.stderr)
+                return EXIT_BAD_INPUT
         try:
             fig = draw(args.figure, datasets, **options)
         except (KeyError, ValueError) as err:
-            print(f"{' '.join(args.result)}: cannot draw '{args.figure}': {err}",
-                  file=sys.stderr)
+            said = err.args[0] if isinstance(err, KeyError) and err.args else err
+            print(f"{' '.join(args.result)}: cannot draw '{args.figure}': "
+                  f"{' '.join(str(said).split())}", file=sys.stderr)
             return EXIT_BAD_INPUT
     return _save(fig, args.output)
 

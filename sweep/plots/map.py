@@ -1,22 +1,35 @@
-"""Outcome maps of a study: one panel per value of the other axes, cells coloured by outcome.
+"""Outcome maps of a study: one panel per value of the other axes, cells coloured by outcome;
+and the boundaries of a refine study.
 
 Reads only the Dataset of ``sweep.run`` (``outcome`` with its ``flag_values`` and
-``flag_meanings``, coordinates with ``units`` and ``long_name``).  By default frequency runs
-along x (log scale when the values are log-spaced) and amplitude along y; an amplitude in
-West's units gets the line amplitude = 1, West's criterion for the start of rocking (Eq. 1).  Cells whose body slid (``slid``) carry a
-cross, so that a squat body that slid far is not read as "no rocking" alone.
+``flag_meanings``, coordinates with ``units``, ``long_name`` and ``study_axis``).  By default
+frequency runs along x (log scale when the values are log-spaced) and amplitude along y; an
+amplitude in West's units gets the line amplitude = 1, West's criterion for the start of
+rocking (Eq. 1).  Cells whose body slid (``slid``) carry a cross, so that a squat body that
+slid far is not read as "no rocking" alone.  A panel whose axes leave the body fixed is
+titled with the body ("B 10 cm × H 30 cm (b/h 0.333)", from the study's base scene and the
+panel's values of ``B``, ``H``, ``b_over_h`` and ``size``), the other axes' values follow
+with their units.
+
+A refine study's dataset (``cf.REFINE_VARIABLES``) is drawn by :func:`figure_boundary`: the
+boundary along the refined axis against another axis, with its bracket, over the coarse
+values seen standing and overturned.
 """
 import itertools
 
 import matplotlib.pyplot as plt
 import numpy as np
+import yaml
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
+from ..io import units
+from ..runner.verdict import length_text
 from .style import OUTCOME_COLOURS, cell_edges, outcome_colours
 
 MAX_PANELS = 6  # more combinations of the other axes than this: the first ones are drawn
+BODY_AXES = ("B", "H", "b_over_h", "size", "body.B", "body.H")  # study axes that change the body
 
 
 # short labels of axes in the paper's body-relative units
@@ -31,6 +44,60 @@ def _label(da):
     name = da.attrs.get("long_name", da.name)
     units = da.attrs.get("units", "")
     return name if units in ("", "1") else f"{name} [{units}]"
+
+
+def _study_axis(coord):
+    """The study's name of a coordinate (``study_axis``; its own name in older datasets)."""
+    return coord.attrs.get("study_axis", coord.name)
+
+
+def _value_text(coord, value):
+    """'mu = 0.4', 'frequency = 4 Hz', 'amplitude = 1.5 west', 'record = elcentro1940_ns'."""
+    if coord.dtype.kind not in "fi":
+        return f"{coord.name} = {value}"
+    unit = coord.attrs.get("study_unit") or coord.attrs.get("units", "")
+    return f"{coord.name} = {value:.4g}" + ("" if unit in ("", "1") else f" {unit}")
+
+
+def _base_body(ds):
+    """B and H [m] of the study's base scene (its ``study`` attribute), or None."""
+    scene = (yaml.safe_load(ds.attrs.get("study", "")) or {}).get("scene") or {}
+    body = scene.get("body") or {}
+    try:
+        return tuple(units.parse_quantity(body[key], "length").to_si() for key in "BH")
+    except (KeyError, ValueError):
+        return None
+
+
+def _body_text(ds, values):
+    """'B 10 cm × H 30 cm (b/h 0.333)': the base body with the body axes among ``values``
+    ({study axis: coordinate}) applied as a study's cells apply them, or None."""
+    body = _base_body(ds)
+    if body is None:
+        return None
+    B, H = body
+    B = values.get("B", values.get("body.B", B))
+    H = values.get("H", values.get("body.H", H))
+    if "b_over_h" in values:
+        H = B / values["b_over_h"]
+    if "size" in values:
+        B, H = B * values["size"], H * values["size"]
+    return f"B {length_text(B)} × H {length_text(H)} (b/h {B / H:.3g})"
+
+
+def panel_title(ds, sel, x, y):
+    """Title of the panel ``sel`` ({dimension: index}) of a map along ``x`` and ``y``: the
+    body when the panel's axes leave it fixed, then every other value with its unit."""
+    along = [ds[c] for c in ds.coords if set(ds[c].dims) & {x, y}]
+    coords = [(ds[c], int(sel[ds[c].dims[0]])) for c in ds.coords
+              if len(ds[c].dims) == 1 and ds[c].dims[0] in sel]
+    texts = [_value_text(c, c.values[i]) for c, i in coords if _study_axis(c) not in BODY_AXES]
+    if not any(_study_axis(c) in BODY_AXES for c in along):
+        body = _body_text(ds, {_study_axis(c): float(c.values[i]) for c, i in coords
+                               if _study_axis(c) in BODY_AXES})
+        if body is not None:
+            return "; ".join([body, *texts])
+    return ", ".join(_value_text(c, c.values[i]) for c, i in coords)
 
 
 def _log_spaced(values):
@@ -85,7 +152,7 @@ def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
     ax.set_ylabel(_label(da[y]))
     if da[y].attrs.get("study_unit") == "west":
         ax.axhline(1.0, color="k", ls="--", lw=1)
-        ax.annotate("West: a = (B/H) g", (xs.min(), 1.0), xytext=(2, 3),
+        ax.annotate("West: a = (B/H) g", (xs.max(), 1.0), xytext=(-2, 3), ha="right",
                     textcoords="offset points", fontsize=8)
     any_slid = slid is not None and _mark_slid(ax, slid, x, y)
     if legend:
@@ -102,15 +169,18 @@ def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
 
 
 def figure_map(ds, x=None, y=None):
-    """Outcome map(s) of a study Dataset: a matplotlib Figure.
+    """Outcome map(s) of a study Dataset, or the boundaries of a refine study's
+    (:func:`figure_boundary`): a matplotlib Figure.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        A dataset of ``sweep.run`` (needs ``outcome``).
+        A dataset of ``sweep.run`` (``outcome``, or ``boundary`` from a refine study).
     x, y : str, optional
         Dimensions along x and y; default frequency and amplitude, else the first two.
     """
+    if "boundary" in ds:
+        return figure_boundary(ds, x, y)
     x, y = _axes_of(ds, x, y)
     outcome = ds["outcome"]
     others = [d for d in outcome.dims if d not in (x, y)]
@@ -125,10 +195,125 @@ def figure_map(ds, x=None, y=None):
         sel = dict(zip(others, combo))
         draw_outcome_map(ax, outcome.isel(sel), x, y, legend=(k == cols - 1 or n == 1),
                          slid=ds["slid"].isel(sel) if "slid" in ds else None)
-        title = ", ".join(f"{d} = {ds[d].values[i]:.4g}" if ds[d].dtype.kind == "f"
-                          else f"{d} = {ds[d].values[i]}" for d, i in sel.items())
-        ax.set_title(title, fontsize=10)
+        ax.set_title(panel_title(ds, sel, x, y), fontsize=10)
     for ax in axes.flat[n:]:
         ax.set_visible(False)
     fig.suptitle(ds.attrs.get("title", "outcome map"), fontsize=11)
     return fig
+
+
+# refine studies: the boundary found by bisection -------------------------------------------
+
+# coarse_overturned code -> colour of the coarse cells behind a boundary: failed, stood, fell
+COARSE_COLOURS = {-1: OUTCOME_COLOURS[-1], 0: OUTCOME_COLOURS[0], 1: "#fcbba1"}
+# lines without a bracket: bracket flag -> (marker, where it is drawn, legend text)
+UNBRACKETED = {"never_overturned": ("^", "boundary_lower", "stood up to the highest value"),
+               "overturned_at_start": ("v", "boundary_upper", "overturned at the lowest value"),
+               "simulation_failed": ("X", "boundary_lower", "a simulation failed")}
+
+
+def refined_dimension(ds):
+    """The dimension a refine dataset was bisected along (``coarse_overturned`` has it,
+    ``boundary`` not)."""
+    return next(d for d in ds["coarse_overturned"].dims if d not in ds["boundary"].dims)
+
+
+def _bracket_codes(ds):
+    """{bracket name: code} from the ``flag_meanings`` of ``bracket``."""
+    attrs = ds["bracket"].attrs
+    return dict(zip(attrs["flag_meanings"].split(), np.atleast_1d(attrs["flag_values"])))
+
+
+def draw_boundary(ax, ds, x):
+    """One line of boundaries of a refine dataset ``ds`` (every dimension but ``x`` and the
+    refined one already selected): the coarse cells, standing and overturned, behind the
+    boundary with its bracket as error bars and markers for lines without a bracket.
+    Returns the legend's handles."""
+    y = refined_dimension(ds)
+    coarse = ds["coarse_overturned"].transpose(y, x)
+    xs, ys = ds[x].values, ds[y].values
+    logx = _log_spaced(xs)
+    codes = sorted(COARSE_COLOURS)
+    cmap = plt.matplotlib.colors.ListedColormap([COARSE_COLOURS[c] for c in codes])
+    norm = plt.matplotlib.colors.BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
+    ax.pcolormesh(cell_edges(xs, logx), cell_edges(ys, _log_spaced(ys)), coarse.values,
+                  cmap=cmap, norm=norm, edgecolors="white", linewidth=0.3)
+    if logx:
+        ax.set_xscale("log")
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    boundary, lower, upper = (ds[name].values for name in
+                              ("boundary", "boundary_lower", "boundary_upper"))
+    ax.errorbar(xs, boundary, yerr=[boundary - lower, upper - boundary], color="k", lw=1.2,
+                marker="o", markersize=3, capsize=3, zorder=3)
+    handles = [Line2D([], [], color="k", marker="o", markersize=3,
+                      label="boundary (bars: highest\nstanding, lowest overturned)"),
+               Patch(color=COARSE_COLOURS[0], label="coarse value: stood"),
+               Patch(color=COARSE_COLOURS[1], label="coarse value: overturned")]
+    flags = ds["bracket"].values
+    for name, code in _bracket_codes(ds).items():
+        if name in UNBRACKETED and np.any(flags == code):
+            marker, where, text = UNBRACKETED[name]
+            ax.plot(xs[flags == code], ds[where].values[flags == code], ls="", marker=marker,
+                    color="k", markersize=7, zorder=3)
+            handles.append(Line2D([], [], ls="", marker=marker, color="k", label=text))
+    ax.set_xlabel(_label(ds[x]))
+    ax.set_ylabel(f"overturning boundary: {_label(ds[y])}")
+    if ds[y].attrs.get("study_unit") == "west":
+        ax.axhline(1.0, color="k", ls="--", lw=1)
+        ax.annotate("West: a = (B/H) g", (xs.min(), 1.0), xytext=(2, -11),
+                    textcoords="offset points", fontsize=8)
+    return handles
+
+
+def figure_boundary(ds, x=None, y=None):
+    """The boundaries of a refine study's Dataset (``cf.refine_dataset``): a matplotlib
+    Figure, one panel per value of the dimensions other than ``x`` and the refined one.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Needs ``boundary``, ``boundary_lower``, ``boundary_upper``, ``bracket`` and
+        ``coarse_overturned``.
+    x : str, optional
+        Dimension along x: default the first dimension of ``boundary``.
+    y : str, optional
+        The refined dimension, always along y (any other is refused).
+    """
+    refined = refined_dimension(ds)
+    if y not in (None, refined):
+        raise ValueError(f"a boundary is drawn with its refined dimension {refined!r} along y, "
+                         f"not {y!r}")
+    lines = list(ds["boundary"].dims)
+    if not lines:
+        raise ValueError("the refine study has no other axis to draw its boundary against")
+    x = x or lines[0]
+    if x not in lines:
+        raise ValueError(f"{x!r} is not a dimension of the boundaries: {lines}")
+    others = [d for d in lines if d != x]
+    combos = list(itertools.product(*(range(ds.sizes[d]) for d in others)))[:MAX_PANELS]
+    cols = min(len(combos), 3)
+    rows = int(np.ceil(len(combos) / cols))
+    fig, axes = plt.subplots(rows, cols, figsize=(4.8 * cols + 2.2, 3.9 * rows),
+                             squeeze=False, layout="constrained")
+    for ax, combo in zip(axes.flat, combos):
+        sel = dict(zip(others, combo))
+        handles = draw_boundary(ax, ds.isel(sel), x)
+        ax.set_title(panel_title(ds, sel, x, refined), fontsize=10)
+    axes.flat[min(len(combos), cols) - 1].legend(handles=handles, loc="upper left",
+                                                 bbox_to_anchor=(1.01, 1.0), fontsize=8,
+                                                 frameon=False)
+    for ax in axes.flat[len(combos):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{ds.attrs.get('title', 'overturning boundary')}\n"
+                 f"bisection to {ds.attrs.get('refine_tolerance', np.nan):g} "
+                 f"{_tolerance_unit(ds[refined])}: {ds.attrs.get('refine_simulations', '?')} "
+                 f"simulations (a grid of the same resolution: "
+                 f"{ds.attrs.get('refine_dense_grid_simulations', '?')})", fontsize=10)
+    return fig
+
+
+def _tolerance_unit(coord):
+    unit = coord.attrs.get("study_unit") or coord.attrs.get("units", "")
+    return "" if unit == "1" else unit
