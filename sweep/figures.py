@@ -11,6 +11,8 @@ classify the overturnings of the sweeps of Fig. 11 once for Figs 11-16
 and figures are shared out among the ranks.  A line per stage on stderr says how long it took.
 """
 import argparse
+import contextlib
+import io
 import sys
 import time
 from pathlib import Path
@@ -42,13 +44,24 @@ PLAN = {
     "fig19": ("fig19", ("fig19_taft_ew",)),
     "fig20": ("fig20", ("fig20_elcentro_ew",)),
     "fig21": ("fig21", ("fig21_summary",)),
+    "rocking_spectrum": ("spectrum", ("rocking_spectrum_elcentro",)),
+}
+# Fragility figures (python -m sweep.fragility): output name -> (study, its arguments)
+FRAGILITY = {
+    "fragility_records": ("fragility_records", ("--over", "record", "--im", "pga")),
+    "fragility_synthetic": ("fragility_synthetic", ("--over", "seed", "--im", "pga")),
+    "fragility_synthetic_map": ("fragility_synthetic", ("--over", "seed", "--over",
+                                                         "magnitude", "--im", "pga",
+                                                         "--kind", "map")),
+    "fragility_synthetic_pgv": ("fragility_synthetic", ("--over", "seed", "--im", "pgv")),
 }
 CLASSIFIED = PLAN["fig11"][1]  # the sweeps whose overturnings Figs 11-16 classify
 
 
 def studies():
-    """The studies of ``PLAN``, each once, in order of first use."""
-    return list(dict.fromkeys(name for _, names in PLAN.values() for name in names))
+    """The studies of ``PLAN`` and ``FRAGILITY``, each once, in order of first use."""
+    return list(dict.fromkeys([*(name for _, names in PLAN.values() for name in names),
+                               *(name for name, _ in FRAGILITY.values())]))
 
 
 def share(tasks, size, cost=None):
@@ -95,7 +108,7 @@ def draw_scenes(comm, output):
     (output / "scenes").mkdir(parents=True, exist_ok=True)
     for path in share(paths, comm.Get_size())[comm.Get_rank()]:
         result = simulate(path, history=True)
-        fig = draw_scene(result.history, f"{path}: {result.status}")
+        fig = draw_scene(result.history, path.name)
         save_figure(fig, output / "scenes" / f"{path.stem}.png", dpi=110)
         plt.close(fig)
     return len(paths)
@@ -148,6 +161,24 @@ def draw_figures(comm, datasets, known, output):
         plt.close(fig)
 
 
+def draw_fragility(comm, output):
+    """This rank's share of the fragility figures of ``FRAGILITY`` (and their datasets,
+    ``results/<study>_fragility_<im>.nc``, written as ``python -m sweep.fragility`` does)."""
+    from .fragility import main as fragility
+    from .io.study_schema import load_study
+
+    for name in share(list(FRAGILITY), comm.Get_size())[comm.Get_rank()]:
+        study, arguments = FRAGILITY[name]
+        result = load_study(STUDIES / f"{study}.yaml", check_cells=False).output
+        dataset = result.with_name(f"{result.stem}_{name}.nc")
+        with contextlib.redirect_stdout(io.StringIO()):  # its table: in the dataset too
+            status = fragility([str(result), *arguments, "-o", str(output / f"{name}.png"),
+                                "--dataset", str(dataset)])
+        if status:
+            return status
+    return 0
+
+
 def open_datasets(names):
     """{study: its dataset}, opened from the study's output."""
     import xarray as xr
@@ -186,6 +217,10 @@ def main(argv=None):
         draw_figures(comm, datasets, known, output)
         for ds in datasets.values():
             ds.close()
+        status = draw_fragility(comm, output)
+        if status:
+            return status
+        stages.done(f"{len(FRAGILITY)} fragility figures drawn")
         mpi.barrier(comm)
         stages.total(output)
     return 0
