@@ -6,8 +6,11 @@ displacement exceeds d_o = v_o^2/a_o (Eq. 18; the paper finds this one too conse
 overturned body bounds PGA, PGV and PGD from below, and the most demanding one gives the bound.
 Standing bodies bound nothing from above: the criteria are necessary, not sufficient, and for a
 given record overturning is not monotonic in amplitude (Yim, Chopra & Penzien 1980).
-Bodies come from ``sweep.io.bodies_schema``; results are in SI, ``format_text`` writes them in
-the paper's units.
+A body whose friction coefficient is given and below B/H slides before it can rock (the
+paper's conclusion 1): the criteria, which assume rocking, do not apply to it, so it bounds
+nothing and is listed among the ``excluded`` bodies with the reason.  Bodies come from
+``sweep.io.bodies_schema``; results are in SI, ``format_text`` writes them in the paper's
+units.
 """
 import math
 import textwrap
@@ -46,15 +49,26 @@ def _finite(row):
     return all(math.isfinite(row[field]) for field in criteria.IshiyamaLimits._fields)
 
 
+def slides(body):
+    """True when the body's friction coefficient is known and below B/H: it slides before
+    it rocks (Ishiyama 1982, conclusion 1)."""
+    return body.mu is not None and body.mu < body.B / body.H
+
+
+def sliding_reason(mu, B, H):
+    """Why a body of friction ``mu`` < B/H is kept out of the rocking bounds."""
+    return (f"mu = {mu:g} < B/H = {B / H:.3g}: the body slides rather than rocks (the "
+            "paper's conclusion 1); the criteria assume rocking, so it bounds nothing")
+
+
 def _notes(body, limits):
     """Why the criteria may not apply to ``body``, or give it no limits."""
     notes = []
     if not all(math.isfinite(x) for x in limits):
         notes.append("its limits overflow double precision (B/H or i_g out of range): it "
                      "bounds nothing")
-    if body.mu is not None and body.mu < body.B / body.H:
-        notes.append(f"mu = {body.mu:g} < B/H = {body.B / body.H:.3g}: the body slides "
-                     "rather than rocks (the paper's conclusion 1); the criteria assume rocking")
+    if slides(body):
+        notes.append(sliding_reason(body.mu, body.B, body.H))
     if body.B > body.H:
         notes.append("B > H: squatter than the paper's bodies (its specimens have B/H from "
                      "1/5 to 1/3, Table 2)")
@@ -62,9 +76,9 @@ def _notes(body, limits):
 
 
 def _bounds(rows):
-    """{pga|pgv|pgd: {value, body}} from the overturned rows with finite limits (None
-    without any)."""
-    fallen = [row for row in rows if row["overturned"] and _finite(row)]
+    """{pga|pgv|pgd: {value, body}} from the overturned rows with finite limits that do not
+    slide (None without any)."""
+    fallen = [row for row in rows if row["overturned"] and _finite(row) and not row["slides"]]
     if not fallen:
         return None
     out = {}
@@ -85,13 +99,14 @@ def estimate(bodies):
     Returns
     -------
     dict
-        ``bodies``: per body its name, B, H, state, a_o [m/s^2], v_o [m/s], d_o [m], T_c [s]
-        and notes; ``lower_limits``: for ``pga``, ``pgv``, ``pgd`` the largest limit among
-        the overturned bodies and the body giving it (None if none overturned);
-        ``by_direction``: the same per direction of fall, for bodies that give one;
-        ``standing``: names of the standing bodies; ``standing_exceeded``: those whose a_o and
-        v_o both lie below the lower limits (they stood although the criteria held);
-        ``standing_note``: what standing bodies do not prove.
+        ``bodies``: per body its name, B, H, state, a_o [m/s^2], v_o [m/s], d_o [m], T_c [s],
+        ``slides`` and notes; ``lower_limits``: for ``pga``, ``pgv``, ``pgd`` the largest
+        limit among the overturned bodies that do not slide and the body giving it (None if
+        there is none); ``by_direction``: the same per direction of fall, for bodies that
+        give one; ``excluded``: ``{name, reason}`` of the bodies that slide (mu < B/H);
+        ``standing``: names of the standing bodies; ``standing_exceeded``: those that do not
+        slide and whose a_o and v_o both lie below the lower limits (they stood although the
+        criteria held); ``standing_note``: what standing bodies do not prove.
 
     References
     ----------
@@ -103,17 +118,20 @@ def estimate(bodies):
         rows.append({"name": body.name, "B": body.B, "H": body.H, "i_g": body.i_g,
                      "mu": body.mu, "overturned": body.overturned,
                      "direction": body.direction, **limits._asdict(),
-                     "notes": _notes(body, limits)})
-    directions = sorted({row["direction"] for row in rows
-                         if row["overturned"] and _finite(row) and row["direction"] is not None})
+                     "slides": slides(body), "notes": _notes(body, limits)})
+    directions = sorted({row["direction"] for row in rows if row["overturned"] and _finite(row)
+                         and not row["slides"] and row["direction"] is not None})
     bounds = _bounds(rows)
     standing = [row for row in rows if not row["overturned"]]
     exceeded = [] if bounds is None else [
-        row["name"] for row in standing
-        if row["a_o"] < bounds["pga"]["value"] and row["v_o"] < bounds["pgv"]["value"]]
+        row["name"] for row in standing if not row["slides"]
+        and row["a_o"] < bounds["pga"]["value"] and row["v_o"] < bounds["pgv"]["value"]]
     return {"bodies": rows, "lower_limits": bounds,
             "by_direction": {d: _bounds([r for r in rows if r["direction"] == d])
                              for d in directions},
+            "excluded": [{"name": row["name"], "reason": sliding_reason(row["mu"], row["B"],
+                                                                        row["H"])}
+                         for row in rows if row["slides"]],
             "standing": [row["name"] for row in standing],
             "standing_exceeded": exceeded, "standing_note": STANDING_NOTE}
 
@@ -139,10 +157,14 @@ def format_text(result, site=None):
                      f"{row['d_o'] * 100:8.2f} {row['T_c']:7.3f}")
         lines += [f"{'':<18} note: {note}" for note in row["notes"]]
     lines.append("")
+    if result["excluded"]:
+        lines.append(textwrap.fill(
+            "Kept out of the limits (they slide rather than rock, mu < B/H): "
+            + ", ".join(row["name"] for row in result["excluded"]) + ".", width=WIDTH))
     bounds = result["lower_limits"]
     if bounds is None:
-        lines.append("No body overturned with finite limits: the bodies give no lower limit "
-                     "of the peak ground motion.")
+        lines.append("No overturned body that rocks has finite limits: the bodies give no "
+                     "lower limit of the peak ground motion.")
     else:
         lines.append("Lower limits of the peak horizontal ground motion implied by the "
                      "overturned bodies\n(the most demanding body gives each):")
