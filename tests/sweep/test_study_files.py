@@ -1,14 +1,15 @@
 """Every file in studies/ still validates, so that none rots as the schemas change.
 
 A file with ``grid`` is a study (checked with every cell's scene, as ``sweep.run`` does before
-running), one with ``bodies`` a bodies file of ``sweep.estimate``, any other YAML file a scene.
+running), one with ``bodies`` or ``sites`` a bodies file of ``sweep.estimate``, any other YAML
+file a scene.
 """
 from pathlib import Path
 
 import pytest
 import yaml
 
-from sweep.estimate import load_bodies
+from sweep.estimate import load_survey
 from sweep.io.scene_schema import load_scene
 from sweep.io.study_schema import load_study
 
@@ -20,7 +21,7 @@ def kind_of(path):
     raw = yaml.safe_load(path.read_text())
     if isinstance(raw, dict) and "grid" in raw:
         return "study"
-    if isinstance(raw, dict) and "bodies" in raw:
+    if isinstance(raw, dict) and ("bodies" in raw or "sites" in raw):
         return "bodies"
     return "scene"
 
@@ -37,7 +38,7 @@ def test_file_validates(path):
         assert study.n_cells >= 1
         assert study.output.suffix == ".nc"
     elif kind == "bodies":
-        _, bodies = load_bodies(path)
-        assert bodies
+        survey = load_survey(path)
+        assert all(site.bodies for site in survey.sites)
     else:
         assert load_scene(path).body.B.value > 0
