@@ -41,11 +41,14 @@ bench: install
 	$(PY) -m benchmarks
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
-# 17 (closed forms), 18-21 (records), and the estimate example: one MPI job on 2 ranks.
+# 17 (closed forms), 18-21 (records), the rocking spectrum and fragility figures (one MPI job
+# on 2 ranks), and the estimate examples (deterministic, and with an ensemble of records).
 figures: install
 	mkdir -p figures
 	$(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.figures -o figures
 	$(PY) -m sweep.estimate studies/bodies_example.yaml | tee figures/bodies_example.txt
+	$(PY) -m sweep.estimate studies/tombstones_estimate.yaml -o figures/site_estimate.png \
+	  > figures/tombstones_estimate.txt
 
 clean:
 	rm -rf out results figures
