@@ -10,7 +10,8 @@ export OMPI_MCA_rmaps_base_oversubscribe := 1
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[mpi,test]'
+	# the editable install's notice (folders named like the package) is about this very layout
+	PYTHONWARNINGS=ignore::UserWarning $(PY) -m pip install --quiet -e '.[mpi,test]'
 	touch $(STAMP)
 
 # Compiles the kernel once into its cache folder (kernels/_jit.py), or finds it there
