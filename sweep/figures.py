@@ -48,8 +48,8 @@ PLAN = {
 }
 # Fragility figures (python -m sweep.fragility): output name -> (study, its arguments)
 FRAGILITY = {
-    "fragility_records": ("fragility_records", ("--over", "record", "--im", "pga")),
-    "fragility_synthetic": ("fragility_synthetic", ("--over", "seed", "--im", "pga")),
+    "fragility_records_pga": ("fragility_records", ("--over", "record", "--im", "pga")),
+    "fragility_synthetic_pga": ("fragility_synthetic", ("--over", "seed", "--im", "pga")),
     "fragility_synthetic_map": ("fragility_synthetic", ("--over", "seed", "--over",
                                                          "magnitude", "--im", "pga",
                                                          "--kind", "map")),
@@ -163,14 +163,14 @@ def draw_figures(comm, datasets, known, output):
 
 def draw_fragility(comm, output):
     """This rank's share of the fragility figures of ``FRAGILITY`` (and their datasets,
-    ``results/<study>_fragility_<im>.nc``, written as ``python -m sweep.fragility`` does)."""
+    ``results/<figure name>.nc``, written as ``python -m sweep.fragility`` does)."""
     from .fragility import main as fragility
     from .io.study_schema import load_study
 
     for name in share(list(FRAGILITY), comm.Get_size())[comm.Get_rank()]:
         study, arguments = FRAGILITY[name]
         result = load_study(STUDIES / f"{study}.yaml", check_cells=False).output
-        dataset = result.with_name(f"{result.stem}_{name}.nc")
+        dataset = result.with_name(f"{name}.nc")
         with contextlib.redirect_stdout(io.StringIO()):  # its table: in the dataset too
             status = fragility([str(result), *arguments, "-o", str(output / f"{name}.png"),
                                 "--dataset", str(dataset)])
