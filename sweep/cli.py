@@ -20,6 +20,10 @@ The decorated ``main`` returns the exit status instead of a traceback when
   under ``set -o pipefail`` the command thus counts as those do;
 * the user presses Ctrl-C: one line ``interrupted`` on stderr, status 130 = 128 + SIGINT.
 
+It prints an input file's values that are likely not meant (``InputWarning``) as one line
+each, ``warning: <path>: <message>``.  ``EPILOG`` ends every command's ``--help``: the units
+of quantities and where every key of the input files is described.
+
 ``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``; a long
 list can be kept on one line, so that a reader sees the keys before the arrays.
 """
@@ -28,11 +32,30 @@ import json
 import math
 import os
 import sys
+import warnings
 
 import numpy as np
 
+from .io.problems import InputWarning
+from .io.units import listing
+
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE
 EXIT_INTERRUPTED = 130  # 128 + SIGINT
+EPILOG = (f"A quantity is a number in SI units (m, s, rad, Hz) or a string '<number> <unit>'; "
+          f"units: {listing()} (west, v_H and alpha: times the body's (B/H) g, single-shock "
+          "overturning velocity and slenderness angle).  Every key of scene, study and bodies "
+          "files, with its units and default: docs/schema.md.")
+
+
+def _show_input_warning(show):
+    """``warnings.showwarning`` that prints an :class:`InputWarning` as one line and hands
+    the others to ``show``."""
+    def shown(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, InputWarning):
+            print(f"warning: {message}", file=sys.stderr, flush=True)
+        else:
+            show(message, category, filename, lineno, file, line)
+    return shown
 
 
 def command(main):
@@ -40,7 +63,9 @@ def command(main):
     @functools.wraps(main)
     def guarded(argv=None):
         try:
-            status = main(argv)
+            with warnings.catch_warnings():
+                warnings.showwarning = _show_input_warning(warnings.showwarning)
+                status = main(argv)
             sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
             return status
         except BrokenPipeError:

@@ -23,7 +23,7 @@ import re
 import sys
 from pathlib import Path
 
-from .cli import command, print_json
+from .cli import EPILOG, command, print_json
 from .io.bodies_schema import load_bodies, load_survey  # noqa: F401  (load_bodies: one site)
 from .io.files import output_problems, replacing
 from .io.problems import MISSING, FileProblems, Problem, reported
@@ -34,7 +34,7 @@ EXIT_FAILED = 1
 
 def _parse(argv):
     parser = argparse.ArgumentParser(
-        prog="python -m sweep.estimate",
+        prog="python -m sweep.estimate", epilog=EPILOG,
         description="What bodies seen overturned and standing at sites tell of the peak ground "
                     "motion: the lower limits of PGA, PGV and PGD of Ishiyama (1982, Eqs. 14, "
                     "16, 18) and, with an ensemble of motions in the file, bounds at stated "

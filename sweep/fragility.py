@@ -13,7 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .cli import command, print_json
+from .cli import EPILOG, command, print_json
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
@@ -42,7 +42,7 @@ def _positive(text):
 
 def _parser():
     parser = argparse.ArgumentParser(
-        prog="python -m sweep.fragility",
+        prog="python -m sweep.fragility", epilog=EPILOG,
         description="Probabilities of overturning over a study's ensemble with confidence "
                     "intervals, lognormal fragility fits (median, beta and their intervals), "
                     "curves and (PGA, PGV) maps.")

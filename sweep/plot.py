@@ -20,7 +20,7 @@ from pathlib import Path
 
 import yaml
 
-from .cli import command
+from .cli import EPILOG, command
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .paper import classify
@@ -106,7 +106,7 @@ def main(argv=None):
     import matplotlib
 
     matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
-    parser = argparse.ArgumentParser(prog="python -m sweep.plot",
+    parser = argparse.ArgumentParser(prog="python -m sweep.plot", epilog=EPILOG,
                                      description="Draw a figure from a study's netCDF dataset.")
     parser.add_argument("result", nargs="*", help="dataset written by python -m sweep.run "
                         f"(netCDF); none for {', '.join(sorted(WITHOUT_DATASET))}; one or "

@@ -13,7 +13,7 @@ import argparse
 import sys
 import warnings
 
-from .cli import command
+from .cli import EPILOG, command
 from .io.problems import EXIT_BAD_INPUT
 
 EXIT_FAILED = 1
@@ -49,7 +49,7 @@ def _cells(text):
 
 def parse_args(argv=None):
     parser = argparse.ArgumentParser(
-        prog="python -m sweep.run",
+        prog="python -m sweep.run", epilog=EPILOG,
         description="Run a study (a base scene and axes to vary) into one netCDF dataset. "
                     "Under mpiexec the cells are shared by the ranks; a killed run resumes "
                     "from its part files when started again.")

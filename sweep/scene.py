@@ -4,7 +4,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .cli import command, print_json
+from .cli import EPILOG, command, print_json
 from .io.files import output_problems
 from .io.problems import FileProblems, reported
 from .runner.simulate import simulate, summary, to_json_dict
@@ -12,7 +12,8 @@ from .runner.simulate import simulate, summary, to_json_dict
 
 @command
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m sweep.scene", description=__doc__)
+    parser = argparse.ArgumentParser(prog="python -m sweep.scene", description=__doc__,
+                                     epilog=EPILOG)
     parser.add_argument("scene", help="scene file (YAML)")
     said = parser.add_mutually_exclusive_group()
     said.add_argument("--json", action="store_true",

@@ -6,10 +6,13 @@ produces :class:`Problem` s: a dotted ``path`` (``grid.amplitude.num``, ``bodies
 ``value`` given and a ``message``.  :class:`FileProblems` carries them and formats one per line;
 :func:`validation_problems` turns pydantic's errors into problems, :func:`unknown_key` writes the
 "unknown key; did you mean" message, and :func:`reported` turns problems into a message on
-stderr and exit status 2 in the command-line entry points.
+stderr and exit status 2 in the command-line entry points.  A value that is valid but likely
+not what was meant (``sweep.io.plausibility``) is a problem too, issued by :func:`warn` as an
+:class:`InputWarning` that never stops the work.
 """
 import difflib
 import sys
+import warnings
 from collections import namedtuple
 from contextlib import contextmanager
 
@@ -60,6 +63,22 @@ class FileProblems(Exception):
         """The same problems with ``prefix.`` put before each path (a scene inside a study)."""
         return FileProblems([Problem(f"{prefix}.{p.path}" if p.path else prefix, p.value,
                                      p.message) for p in self.problems], self.source)
+
+
+class InputWarning(UserWarning):
+    """A value that is valid but likely not what was meant: ``str`` is ``path: message``, the
+    :class:`Problem` is ``problem``.  The commands print it as one line ``warning: <path>:
+    <message>``; ``warnings.simplefilter("ignore", InputWarning)`` silences it."""
+
+    def __init__(self, problem):
+        super().__init__(f"{problem.path}: {problem.message}")
+        self.problem = problem
+
+
+def warn(problems):
+    """Issue each of ``problems`` as an :class:`InputWarning`."""
+    for problem in problems:
+        warnings.warn(InputWarning(problem), stacklevel=2)
 
 
 def join_path(path, key):

@@ -33,10 +33,10 @@ columns (time, acceleration), one column (accelerations; ``dt`` given)."""
 _DATA = importlib.resources.files("sweep.data") / "records"
 _BY_EXTENSION = {".at2": "at2", **dict.fromkeys(cosmos.EXTENSIONS, "cosmos"),
                  **dict.fromkeys(knet.EXTENSIONS, "knet")}
-# What each format gives itself, for refusing units and dt given for it
-_OWN = {"at2": "a PEER .AT2 file is in g and gives its DT",
-        "knet": "a K-NET file gives its units (gal) and sampling rate",
-        "cosmos": "a COSMOS or CSMIP file gives its units and sample step",
+# What each format gives itself, for refusing a dt given for it
+_OWN = {"at2": "a PEER .AT2 file gives its DT",
+        "knet": "a K-NET file gives its sampling rate",
+        "cosmos": "a COSMOS or CSMIP file gives its sample step",
         "columns": "a two-column file gives its times (format: column reads accelerations "
                    "written two to a line)"}
 
@@ -112,26 +112,23 @@ def _format_of_line(line, data, number, path):
 @functools.lru_cache(maxsize=32)
 def _read_file_cached(path, format, units, dt, component, stamp):
     format = format or detect_format(path)
-    if units is not None and format not in ("columns", "column"):
-        raise RecordError(f"{path}: units apply to two-column files only, and one-column "
-                          f"ones: {_OWN[format]}")
     if dt is not None and format != "column":
         raise RecordError(f"{path}: dt applies to one-column files only: {_OWN[format]}")
     if component is not None and format != "cosmos":
         raise RecordError(f"{path}: component applies to COSMOS and CSMIP files only, which "
                           "may hold several")
     if format == "at2":
-        return read_at2(path)
+        return read_at2(path, units)
     if format == "knet":
-        return knet.read_knet(path)
+        return knet.read_knet(path, units)
     if format == "cosmos":
-        return cosmos.read_cosmos(path, component)
+        return cosmos.read_cosmos(path, component, units)
     if format == "columns":
-        return read_two_column(path, units or "m/s^2")
+        return read_two_column(path, units)
     if dt is None:
         raise RecordError(f"{path}: a file of accelerations alone has no times: give dt (the "
                           "sample step, e.g. dt: 0.01 s)")
-    return columns.read_single_column(path, dt, units or "m/s^2")
+    return columns.read_single_column(path, dt, units)
 
 
 def read_record_file(path, units=None, *, format=None, dt=None, component=None):
@@ -141,8 +138,10 @@ def read_record_file(path, units=None, *, format=None, dt=None, component=None):
     ----------
     path : str or Path
     units : str, optional
-        Acceleration unit of a two- or one-column file (default m/s^2).  The other formats
-        give their units.
+        Acceleration unit of the file's numbers.  Where the file states its unit (the header
+        of AT2 (g), K-NET (gal), COSMOS and CSMIP files; a comment of a column file such as
+        ``# acceleration [g]``) it is that one, and another is refused; a column file that
+        states none is in m/s^2 by default.
     format : str, optional
         One of :data:`FORMATS`; default :func:`detect_format`.
     dt : float, optional
@@ -157,7 +156,9 @@ def read_record_file(path, units=None, *, format=None, dt=None, component=None):
     ------
     RecordError
         A missing or unreadable file, not a regular file, a file the format's reader refuses
-        (the message names the line), or an option that does not apply to the format.
+        (the message names the line), ``units`` other than the file's (the message names
+        them and the line that states the file's), or an option that does not apply to the
+        format.
     """
     path = Path(path)
     if format is not None and format not in FORMATS:

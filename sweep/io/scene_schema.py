@@ -11,13 +11,14 @@ import copy
 import functools
 import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
 import numpy as np
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
-                      PlainValidator, ValidationError, ValidationInfo, field_validator,
-                      model_validator)
+                      PlainValidator, ValidationError, ValidationInfo, WithJsonSchema,
+                      field_validator, model_validator)
 
 from kernels.api import DEFAULTS, scene_row
 
@@ -36,6 +37,23 @@ HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
 MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 parameter row holds exactly
 
 
+@dataclass(frozen=True)
+class QuantityOf:
+    """Annotation of a quantity field: its dimensions and bound, for its JSON Schema (a number
+    in SI units or a string ``"<number> <unit>"``) and the reference (``sweep.io.reference``)."""
+
+    dimensions: tuple
+    gt: float = None
+    ge: float = None
+
+    def __get_pydantic_json_schema__(self, core_schema, handler):
+        bounds = {key: value for key, value in (("exclusiveMinimum", self.gt),
+                                                ("minimum", self.ge)) if value is not None}
+        return {"anyOf": [{"type": "number", **bounds},
+                          {"type": "string", "pattern": units.QUANTITY_PATTERN}],
+                "x-dimensions": list(self.dimensions)}
+
+
 def quantity(*dimensions, gt=None, ge=None):
     """Annotated type: a :class:`Quantity` of ``dimensions`` with an optional sign check."""
     def check(q):
@@ -46,7 +64,7 @@ def quantity(*dimensions, gt=None, ge=None):
             raise ValueError(f"must be greater than or equal to {ge}")
         return q
     return Annotated[Quantity, PlainValidator(lambda v: units.parse_quantity(v, dimensions)),
-                     AfterValidator(check)]
+                     AfterValidator(check), QuantityOf(dimensions, gt, ge)]
 
 
 def _plain_number(value):
@@ -86,9 +104,10 @@ class StrictModel(BaseModel):
 class Body(StrictModel):
     """Full breadth ``B`` and height ``H``; ``i_g`` radius of gyration about G (default uniform)."""
 
-    B: Length
-    H: Length
-    i_g: Optional[Length] = None
+    B: Length = Field(description="full breadth (b = B/2)")
+    H: Length = Field(description="full height (h = H/2)")
+    i_g: Optional[Length] = Field(None, description="radius of gyration about the centre of "
+                                                    "gravity G; default a uniform block's")
 
     @field_validator("i_g")
     @classmethod
@@ -102,31 +121,43 @@ class Body(StrictModel):
 class Contact(StrictModel):
     """Friction and restitution; ``mu`` sets all four friction coefficients, explicit ones win."""
 
-    mu: Optional[Coefficient] = None
-    mu_s: Optional[Coefficient] = None
-    mu_k: Optional[Coefficient] = None
-    mu_edge_s: Optional[Coefficient] = None
-    mu_edge_k: Optional[Coefficient] = None
-    e_x: Optional[Annotated[Real, Field(ge=-1, le=1)]] = None
-    e_y: Optional[Annotated[Real, Field(ge=0, le=1)]] = None
+    mu: Optional[Coefficient] = Field(None, description="the four friction coefficients "
+                                                       "at once")
+    mu_s: Optional[Coefficient] = Field(None, description="static friction, the base face on "
+                                                         "the floor")
+    mu_k: Optional[Coefficient] = Field(None, description="kinetic friction, the base face on "
+                                                         "the floor")
+    mu_edge_s: Optional[Coefficient] = Field(None, description="static friction, one corner "
+                                                              "on the floor")
+    mu_edge_k: Optional[Coefficient] = Field(None, description="kinetic friction, one corner "
+                                                              "on the floor")
+    e_x: Optional[Annotated[Real, Field(ge=-1, le=1)]] = Field(
+        None, description="tangential restitution: -1 keeps, 0 stops the tangential velocity")
+    e_y: Optional[Annotated[Real, Field(ge=0, le=1)]] = Field(
+        None, description="normal restitution (0 with enough friction: Housner's impact)")
 
 
 class _Ground(StrictModel):
     """A floor-motion component; the floor is still outside [start, start + duration)."""
 
-    start: Optional[Instant] = None
-    duration: Optional[Duration] = None
+    start: Optional[Instant] = Field(None, description="when the component starts moving "
+                                                       "the floor")
+    duration: Optional[Duration] = Field(None, description="how long it moves the floor "
+                                                           "(default: to its end)")
 
 
 class NoMotion(StrictModel):
-    kind: Literal["none"]
+    """A floor still along this direction."""
+
+    kind: Literal["none"] = Field(description="the kind of motion")
 
 
 class _Phased(_Ground):
     """A periodic motion's ``phase``, or a ``seed`` that draws it uniformly in [0, 2 pi)."""
 
-    phase: Optional[Angle] = None
-    seed: Optional[Seed] = None
+    phase: Optional[Angle] = Field(None, description="phase at the start")
+    seed: Optional[Seed] = Field(None, description="draws the phase uniformly in [0, 2 pi) "
+                                                   "instead")
 
     @model_validator(mode="after")
     def _phase_or_seed(self):
@@ -138,21 +169,24 @@ class _Phased(_Ground):
 class SineMotion(_Phased):
     """Amplitude as acceleration, velocity or displacement (converted with omega = 2 pi f)."""
 
-    kind: Literal["sine"]
-    amplitude: quantity("acceleration", "velocity", "length")
-    frequency: Frequency
+    kind: Literal["sine"] = Field(description="the kind of motion")
+    amplitude: quantity("acceleration", "velocity", "length") = Field(
+        description="acceleration, velocity or displacement amplitude")
+    frequency: Frequency = Field(description="frequency f")
 
 
 class SweepMotion(_Phased):
     """Frequency sweep keeping the amplitude named by ``hold`` constant; ``duration`` = length."""
 
-    kind: Literal["sweep"]
-    hold: Literal["acceleration", "velocity", "displacement"] = DEFAULTS["ground"]["hold"]
-    amplitude: Quantity
-    f_start: Frequency
-    f_stop: Frequency
-    duration: Duration
-    law: Optional[Literal["log", "linear"]] = None
+    kind: Literal["sweep"] = Field(description="the kind of motion")
+    hold: Literal["acceleration", "velocity", "displacement"] = Field(
+        DEFAULTS["ground"]["hold"], description="the amplitude kept constant")
+    amplitude: Annotated[Quantity, QuantityOf(tuple(HOLD_DIMENSIONS.values()))] = Field(
+        description="the amplitude held, of the dimension that hold names")
+    f_start: Frequency = Field(description="frequency at the start")
+    f_stop: Frequency = Field(description="frequency at the end")
+    duration: Duration = Field(description="length of the sweep")
+    law: Optional[Literal["log", "linear"]] = Field(None, description="frequency against time")
 
     @field_validator("amplitude", mode="plain")
     @classmethod
@@ -168,15 +202,25 @@ class SweepMotion(_Phased):
 
 class _Scaled(_Ground):
     """An accelerogram multiplied by ``scale``, or scaled so that its PGA or its PGV
-    (``sweep.groundmotion.intensity``) is the one given."""
+    (``sweep.groundmotion.intensity``) is the one given; a vertical component may take the
+    horizontal one's factor instead (``scale_with: horizontal``), which keeps their ratio."""
 
-    scale: Optional[Real] = None
-    pga: Optional[quantity("acceleration", gt=0)] = None
-    pgv: Optional[quantity("velocity", gt=0)] = None
+    scale: Optional[Real] = Field(None, description="factor on the samples (-1 flips the "
+                                                    "polarity)")
+    pga: Optional[quantity("acceleration", gt=0)] = Field(
+        None, description="the PGA the motion is scaled to")
+    pgv: Optional[quantity("velocity", gt=0)] = Field(
+        None, description="the PGV (after a 0.1 Hz baseline correction) it is scaled to")
+    scale_with: Optional[Literal["horizontal"]] = Field(
+        None, description="vertical only: the horizontal component's scale factor")
 
     @model_validator(mode="after")
     def _one_scale(self):
         given = [key for key in ("scale", "pga", "pgv") if getattr(self, key) is not None]
+        if self.scale_with is not None and given:
+            raise FieldError("scale_with", self.scale_with,
+                              f"takes the {self.scale_with} component's scale factor: give no "
+                              f"{given[0]} with it")
         if len(given) > 1:
             raise FieldError(given[1], str(getattr(self, given[1])),
                               f"give one of scale, pga and pgv, not {' and '.join(given)}")
@@ -200,19 +244,28 @@ class RecordMotion(_Scaled):
 
     A file's format (``records.FORMATS``) is told by its extension or content unless ``format``
     names it (docs/record_formats.md).  ``units`` is the acceleration unit of a two- or
-    one-column file (default m/s^2); the other formats give theirs.  ``dt`` is the sample step
+    one-column file (default: the unit its ``#`` comments state, else m/s^2); a file that
+    states its units (every other format; comments) refuses another.  ``dt`` is the sample step
     of a one-column file, required there only; ``component`` picks one of the components of a
     COSMOS or CSMIP file, by number or name.  A relative ``path`` is taken from the scene
     file's folder.
     """
 
-    kind: Literal["record"]
-    name: Optional[str] = None
-    units: Optional[str] = None
-    format: Optional[Literal[records.FORMATS]] = None
-    dt: Optional[Duration] = None
-    component: Optional[Annotated[Union[int, str], PlainValidator(_component)]] = None
-    path: Optional[str] = None
+    kind: Literal["record"] = Field(description="the kind of motion")
+    name: Optional[str] = Field(None, description="a bundled record: "
+                                                  + ", ".join(records.NAMES))
+    units: Optional[str] = Field(None, description="acceleration unit of a one- or two-column "
+                                                   "file (default: the one its comments "
+                                                   "state, else m/s^2)")
+    format: Optional[Literal[records.FORMATS]] = Field(None, description="the file's format "
+                                                                         "(default: told by "
+                                                                         "its name or content)")
+    dt: Optional[Duration] = Field(None, description="sample step of a one-column file")
+    component: Optional[Annotated[Union[int, str], PlainValidator(_component), WithJsonSchema(
+        {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "string"}]})]] = Field(
+        None, description="component of a COSMOS or CSMIP file: its number (from 1) or name")
+    path: Optional[str] = Field(None, description="a record file, relative to the scene "
+                                                  "file's folder")
 
     @field_validator("name")
     @classmethod
@@ -272,13 +325,14 @@ class SyntheticMotion(_Scaled):
     (``sweep.groundmotion.stochastic``): moment magnitude, distance to the rupture, Vs30 and
     the seed of the noise; sampled every ``dt``."""
 
-    kind: Literal["synthetic"]
-    model: str = "boore2003"
-    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)]
-    distance: quantity("length", gt=0)
-    vs30: quantity("velocity", gt=0)
-    seed: Seed = 0
-    dt: Optional[Duration] = None
+    kind: Literal["synthetic"] = Field(description="the kind of motion")
+    model: str = Field("boore2003", description="the stochastic ground-motion model")
+    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)] = Field(description="moment magnitude")
+    distance: quantity("length", gt=0) = Field(description="distance to the rupture")
+    vs30: quantity("velocity", gt=0) = Field(description="mean shear-wave velocity of the "
+                                                         "site's top 30 m")
+    seed: Seed = Field(0, description="seed of the noise")
+    dt: Optional[Duration] = Field(None, description="sample step (default: the model's)")
 
     @field_validator("model")
     @classmethod
@@ -292,10 +346,10 @@ class SyntheticMotion(_Scaled):
 class PulseMotion(_Ground):
     """Rectangular or triangular acceleration pulse of length ``duration``."""
 
-    kind: Literal["pulse"]
-    shape: Literal["rectangular", "triangular"]
-    amplitude: Acceleration
-    duration: Duration
+    kind: Literal["pulse"] = Field(description="the kind of motion")
+    shape: Literal["rectangular", "triangular"] = Field(description="the pulse's shape")
+    amplitude: Acceleration = Field(description="peak acceleration")
+    duration: Duration = Field(description="length of the pulse")
 
 
 Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
@@ -303,8 +357,12 @@ Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseM
 
 
 class Excitation(StrictModel):
-    horizontal: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
-    vertical: Ground = Field(default_factory=lambda: NoMotion(kind="none"))
+    """The floor's motion: one component along each direction, of any kind."""
+
+    horizontal: Ground = Field(default_factory=lambda: NoMotion(kind="none"),
+                               description="floor acceleration along x (to the right)")
+    vertical: Ground = Field(default_factory=lambda: NoMotion(kind="none"),
+                             description="floor acceleration along y (upward)")
 
     @field_validator("horizontal", "vertical", mode="before")
     @classmethod
@@ -312,42 +370,68 @@ class Excitation(StrictModel):
         """``vertical: none`` or an empty entry means no motion."""
         return {"kind": "none"} if value is None or value == "none" else value
 
+    @model_validator(mode="after")
+    def _scale_with_a_scaled_horizontal(self):
+        """``scale_with`` is the vertical's, and needs a horizontal record or synthetic
+        motion, which has a scale factor."""
+        if getattr(self.horizontal, "scale_with", None) is not None:
+            raise FieldError(("horizontal", "scale_with"), self.horizontal.scale_with,
+                              "only the vertical component can take the horizontal's scale")
+        kind = self.horizontal.kind
+        if getattr(self.vertical, "scale_with", None) is not None and \
+                kind not in ("record", "synthetic"):
+            raise FieldError(("vertical", "scale_with"), self.vertical.scale_with,
+                              f"the horizontal component is of kind {kind}: only a record or "
+                              "a synthetic motion has a scale factor to share")
+        return self
+
 
 class Initial(StrictModel):
     """Initial state: tilt, angular velocity, velocities of G and lift of the base [SI]."""
 
-    theta: Optional[Angle] = None
-    omega: Optional[quantity("angular_velocity")] = None
-    x_dot: Optional[quantity("velocity")] = None
-    y_dot: Optional[quantity("velocity")] = None
-    lift: Optional[quantity("length", ge=0)] = None
+    theta: Optional[Angle] = Field(None, description="tilt, > 0 about the left corner")
+    omega: Optional[quantity("angular_velocity")] = Field(None,
+                                                          description="angular velocity")
+    x_dot: Optional[quantity("velocity")] = Field(None, description="horizontal velocity of G")
+    y_dot: Optional[quantity("velocity")] = Field(None, description="vertical velocity of G")
+    lift: Optional[quantity("length", ge=0)] = Field(None, description="lift of the base "
+                                                                       "above the floor")
 
 
 class Solver(StrictModel):
     """Integrator and guards (PHYSICS.md 3); ``t_end`` and ``dt_out`` (the history's sampling)
     default from the excitation."""
 
-    method: Optional[Literal["adaptive", "fixed"]] = None
-    rtol: Optional[Annotated[Real, Field(gt=0)]] = None
-    atol: Optional[Annotated[Real, Field(gt=0)]] = None
-    dt: Optional[Duration] = None
-    max_step: Optional[Duration] = None
-    t_end: Optional[Duration] = None
-    max_steps: Optional[Count] = None
-    max_events: Optional[Count] = None
-    theta_overturn: Optional[quantity("angle", gt=0)] = None
-    zeno_dt: Optional[Duration] = None
-    dt_out: Optional[Duration] = None
+    method: Optional[Literal["adaptive", "fixed"]] = Field(
+        None, description="steps controlled by rtol and atol, or fixed steps of dt")
+    rtol: Optional[Annotated[Real, Field(gt=0)]] = Field(None, description="relative "
+                                                                           "tolerance")
+    atol: Optional[Annotated[Real, Field(gt=0)]] = Field(None, description="absolute "
+                                                                           "tolerance")
+    dt: Optional[Duration] = Field(None, description="step of the fixed method")
+    max_step: Optional[Duration] = Field(None, description="largest adaptive step")
+    t_end: Optional[Duration] = Field(None, description="time simulated (default: the end of "
+                                                        "the excitation + 5 s, if it ends)")
+    max_steps: Optional[Count] = Field(None, description="steps at most (then status "
+                                                         "budget_exhausted)")
+    max_events: Optional[Count] = Field(None, description="events (impacts, mode changes) at "
+                                                          "most (then budget_exhausted)")
+    theta_overturn: Optional[quantity("angle", gt=0)] = Field(
+        None, description="|theta| at which the body counts as overturned")
+    zeno_dt: Optional[Duration] = Field(None, description="contacts closing again within this "
+                                                          "time close at once (Zeno)")
+    dt_out: Optional[Duration] = Field(None, description="sampling step of the history "
+                                                         "(--history, --plot, --animate)")
 
 
 class Scene(StrictModel):
     """A scene file (DESIGN.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
 
-    body: Body
-    contact: Contact = Field(default_factory=Contact)
-    excitation: Excitation = Field(default_factory=Excitation)
-    initial: Initial = Field(default_factory=Initial)
-    solver: Solver = Field(default_factory=Solver)
+    body: Body = Field(description="the rigid block")
+    contact: Contact = Field(default_factory=Contact, description="friction and restitution")
+    excitation: Excitation = Field(default_factory=Excitation, description="the floor's motion")
+    initial: Initial = Field(default_factory=Initial, description="the state at t = 0")
+    solver: Solver = Field(default_factory=Solver, description="integrator, budgets, history")
 
 
 # --- errors -----------------------------------------------------------------------------------
@@ -473,8 +557,11 @@ def _accelerogram(g):
             else _read_file(g.path, {key: getattr(g, key) for key in _FILE_OPTIONS}))
 
 
-def _scale(g, rec, body):
-    """Factor on a record's samples: ``scale``, or the one that gives its ``pga``/``pgv``."""
+def _scale(g, rec, body, excitation):
+    """Factor on a record's samples: that of the component ``scale_with`` names (resolved
+    before, in ``excitation``), ``scale``, or the one that gives its ``pga``/``pgv``."""
+    if g.scale_with is not None:
+        return excitation[g.scale_with]["scale"]
     for key in ("pga", "pgv"):
         target = getattr(g, key)
         if target is not None:
@@ -486,9 +573,10 @@ def _scale(g, rec, body):
     return DEFAULTS["ground"]["scale"] if g.scale is None else g.scale
 
 
-def _ground(g, body):
+def _ground(g, body, excitation):
     """Resolved SI dict of one ground component (kernels/api.py docstring); a synthetic
-    motion resolves into a record (its samples), both keep the :class:`Record` as ``source``."""
+    motion resolves into a record (its samples), both keep the :class:`Record` as ``source``.
+    ``excitation``: the components resolved before it."""
     if g.kind == "none":
         return {"kind": "none"}
     defaults = DEFAULTS["ground"]
@@ -506,8 +594,8 @@ def _ground(g, body):
         out.update(shape=g.shape, amplitude=g.amplitude.to_si(body))
     else:
         rec = _accelerogram(g)
-        out.update(kind="record", samples=rec.samples, dt=rec.dt, scale=_scale(g, rec, body),
-                   source=rec)
+        out.update(kind="record", samples=rec.samples, dt=rec.dt,
+                   scale=_scale(g, rec, body, excitation), source=rec)
     return out
 
 
@@ -553,7 +641,8 @@ def resolve_scene(scene):
         ``vertical``), ``initial`` and ``solver`` (all keys), in m, s, rad, Hz.  Sine amplitudes
         are acceleration amplitudes; a sweep's amplitude is in the SI unit of its ``hold``;
         a record (or a synthetic motion, resolved into one) has ``samples`` [m/s^2,
-        read-only], ``dt``, ``scale`` (from ``pga`` or ``pgv`` if given) and ``source``, the
+        read-only], ``dt``, ``scale`` (from ``pga`` or ``pgv`` if given, or the horizontal's
+        for a vertical ``scale_with: horizontal``) and ``source``, the
         :class:`~sweep.io.records.Record`.  A ``seed`` of a sine or sweep is resolved into
         its ``phase``.  Without ``solver.t_end``: the end of the excitation + 5 s when every component
         ends, else ``DEFAULTS["solver"]["t_end"]``.  Without ``solver.dt_out``: the finest record
@@ -581,7 +670,7 @@ def resolve_scene(scene):
     excitation = {}
     for key in ("horizontal", "vertical"):
         try:
-            excitation[key] = _ground(getattr(scene.excitation, key), body)
+            excitation[key] = _ground(getattr(scene.excitation, key), body, excitation)
         except FileProblems as err:
             raise err.with_prefix(f"excitation.{key}") from None
 

@@ -10,9 +10,12 @@ cell's scene shows because of an axis value is reported once, at that value
 (``grid.amplitude[3]``).  An optional ``refine: {axis, tolerance}`` asks for the overturning
 boundary along one axis by bisection (``sweep.runner.refine``).  Coordinates are kept in SI
 units, except for body-relative units (``west``, ``v_H``, ``alpha``), whose numbers are kept as
-the normalized levels they are (CF units ``1``).
+the normalized levels they are (CF units ``1``), and for an axis written wholly in degrees
+(``deg``, ``deg/s``: :data:`AS_WRITTEN`), whose numbers are kept as written.  Values that are
+valid but likely not what was meant (``sweep.io.plausibility``) are warned of once per axis.
 """
 import glob
+import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,13 +24,15 @@ from typing import Annotated, Any, Optional
 
 import numpy as np
 import yaml
-from pydantic import AfterValidator, BeforeValidator, ValidationError, model_validator
+from pydantic import (AfterValidator, BeforeValidator, Field, ValidationError, WithJsonSchema,
+                      model_validator)
 
 from ..runner import grid
 from . import units
+from .plausibility import scene_doubts
 from .scene_schema import load_scene, resolve_scene
 from .problems import (MISSING, FieldError, FileProblems, Problem, closest, join_path,
-                       validation_problems)
+                       validation_problems, warn)
 from .scene_schema import StrictModel
 from .yamlio import parse_yaml, read_text, top_level_problems
 
@@ -50,6 +55,10 @@ SAMPLED_CELLS = 1_000
 CF_UNITS = {"acceleration": "m s-2", "velocity": "m s-1", "length": "m", "angle": "rad",
             "angular_velocity": "rad s-1", "frequency": "Hz", "time": "s",
             "dimensionless": "1", "name": "1"}
+# Units whose numbers the coordinates keep when a whole axis is written in them (CF spelling):
+# a legend reads 180 deg, not 3.14159
+AS_WRITTEN = {"deg": "degree", "deg/s": "degree s-1"}
+_INDEX = re.compile(r"\[\d+\]$")  # the index of an axis value in a path: grid.B[3]
 RELATIVE_NAMES = {"west": "West's acceleration (B/H) g",
                   "v_h": "single-shock overturning velocity v_H (Eq. 9)",
                   "alpha": "slenderness angle alpha"}
@@ -66,8 +75,8 @@ class Axis:
     values : tuple
         Raw values set into each cell's scene (numbers, unit strings or names).
     coords : ndarray, shape (n,)
-        Coordinates of the dataset: float64 in SI or in the body-relative unit, int64 for
-        ``seed``, or str.
+        Coordinates of the dataset: float64 in SI, in the body-relative unit or in the unit
+        of :data:`AS_WRITTEN` written, int64 for ``seed``, or str.
     units, long_name : str
         CF attributes of the coordinate.
     unit : str
@@ -88,6 +97,20 @@ class Axis:
     def body_relative(self):
         """True when the coordinates are levels of ``west``, ``v_H`` or ``alpha``."""
         return self.units == "1" and self.dimension not in ("name", "dimensionless")
+
+    @property
+    def written_coords(self):
+        """True when the coordinates are numbers in ``unit`` (body-relative levels, degrees),
+        not in SI."""
+        return self.body_relative or self.units in AS_WRITTEN.values()
+
+    def coordinate(self, quantity):
+        """A :class:`~sweep.io.units.Quantity` of the axis's dimension in the units of its
+        coordinates (a body-relative one: of the axis's unit)."""
+        if self.body_relative:
+            return quantity.value
+        si = quantity.to_si()
+        return si / units.fixed_factor(self.unit, self.dimension) if self.written_coords else si
 
 
 @dataclass(frozen=True, eq=False)
@@ -197,20 +220,29 @@ def _axis_list(value):
 AXIS_LIST = f"must be a non-empty list of at most {MAX_AXIS_VALUES} values"
 
 
-Bound = Annotated[Any, AfterValidator(_rule(_finite, "must be a finite number"))]
+Bound = Annotated[Any, AfterValidator(_rule(_finite, "must be a finite number")),
+                  WithJsonSchema({"type": "number"})]
+AXIS_VALUE = {"type": ["number", "string"]}  # JSON Schema of one value of an axis
 
 
 class RangeSpec(StrictModel):
     """An axis written as ``{start, stop, num, spacing, unit}`` or ``{values, unit}``."""
 
-    start: Optional[Bound] = None
-    stop: Optional[Bound] = None
+    start: Optional[Bound] = Field(None, description="first value, in unit")
+    stop: Optional[Bound] = Field(None, description="last value, in unit")
     num: Optional[Annotated[Any, AfterValidator(_rule(
-        _count, f"must be an integer >= 1, at most {MAX_AXIS_VALUES}"))]] = None
+        _count, f"must be an integer >= 1, at most {MAX_AXIS_VALUES}")), WithJsonSchema(
+            {"type": "integer", "minimum": 1, "maximum": MAX_AXIS_VALUES})]] = Field(
+        None, description="number of values from start to stop")
     spacing: Optional[Annotated[Any, AfterValidator(_rule(
-        lambda v: v in SPACINGS, f"must be one of: {', '.join(SPACINGS)}"))]] = None
-    unit: Optional[Annotated[Any, AfterValidator(_unit_name)]] = None
-    values: Optional[Annotated[Any, AfterValidator(_rule(_axis_list, AXIS_LIST))]] = None
+        lambda v: v in SPACINGS, f"must be one of: {', '.join(SPACINGS)}")), WithJsonSchema(
+            {"enum": list(SPACINGS)})]] = Field(None, description="linear (default) or log")
+    unit: Optional[Annotated[Any, AfterValidator(_unit_name), WithJsonSchema(
+        {"type": "string"})]] = Field(None, description="unit of the numbers (a unit of the "
+                                                        "axis's dimension)")
+    values: Optional[Annotated[Any, AfterValidator(_rule(_axis_list, AXIS_LIST)), WithJsonSchema(
+        {"type": "array", "minItems": 1, "maxItems": MAX_AXIS_VALUES, "items": AXIS_VALUE})]] = \
+        Field(None, description="the values themselves, numbers in unit")
 
     @model_validator(mode="after")
     def _values_or_range(self):
@@ -244,8 +276,11 @@ class RefineSpec(StrictModel):
     """``refine: {axis, tolerance}``; what the axis and tolerance mean is checked against the
     grid (:func:`_refine`)."""
 
-    axis: Any
-    tolerance: Any
+    axis: Annotated[Any, WithJsonSchema({"type": "string"})] = Field(
+        description="the numeric axis of grid refined")
+    tolerance: Annotated[Any, WithJsonSchema(AXIS_VALUE)] = Field(
+        description="widest final bracket: a number in the axis's unit, or a quantity "
+                    "('0.01 west')")
 
 
 def _mapping_of(what):
@@ -267,22 +302,35 @@ def _file_path(value):
 
 
 NonEmptyText = Annotated[Any, AfterValidator(_rule(
-    lambda v: isinstance(v, str) and bool(v.strip()), "must be a non-empty string"))]
-Text = Annotated[Any, AfterValidator(_rule(lambda v: isinstance(v, str), "must be a string"))]
+    lambda v: isinstance(v, str) and bool(v.strip()), "must be a non-empty string")),
+                         WithJsonSchema({"type": "string", "minLength": 1})]
+Text = Annotated[Any, AfterValidator(_rule(lambda v: isinstance(v, str), "must be a string")),
+                 WithJsonSchema({"type": "string"})]
+AXIS_NAMES = {"type": "array", "minItems": 2, "items": {"type": "string"}}  # a zip group
 
 
 class StudyFile(StrictModel):
     """The sections of a study file (DESIGN.md section 5); axes, zip groups and the refined axis
     are checked against each other and the scene by :func:`load_study`."""
 
-    name: Optional[NonEmptyText] = None
-    title: Optional[Text] = None
-    description: Optional[Text] = None
-    scene: Annotated[dict, _mapping_of("a scene mapping (body, contact, excitation, ...)")]
-    grid: Annotated[dict, _mapping_of("a mapping of axis names to values")]
-    zip: Optional[Any] = None
-    refine: Optional[Annotated[RefineSpec, BeforeValidator(_refine_mapping)]] = None
-    output: Optional[Annotated[Any, AfterValidator(_file_path)]] = None
+    name: Optional[NonEmptyText] = Field(None, description="the study's name (default: the "
+                                                          "file's); the output is named after it")
+    title: Optional[Text] = Field(None, description="title of the dataset and its figures")
+    description: Optional[Text] = Field(None, description="what the study is for, kept in the "
+                                                          "dataset")
+    scene: Annotated[dict, _mapping_of("a scene mapping (body, contact, excitation, ...)")] = \
+        Field(description="the scene every cell starts from (a scene file's keys)")
+    grid: Annotated[dict, _mapping_of("a mapping of axis names to values")] = Field(
+        description="the axes: a name or dotted scene path -> a list of values or a range")
+    zip: Optional[Annotated[Any, WithJsonSchema({"anyOf": [
+        {"type": "array", "items": AXIS_NAMES},
+        {"type": "object", "additionalProperties": AXIS_NAMES}]})]] = Field(
+        None, description="axes that vary together: lists of axis names, or a dimension's "
+                          "name -> its axes")
+    refine: Optional[Annotated[RefineSpec, BeforeValidator(_refine_mapping)]] = Field(
+        None, description="find the overturning boundary along one axis by bisection")
+    output: Optional[Annotated[Any, AfterValidator(_file_path), WithJsonSchema(
+        {"type": "string"})]] = Field(None, description="the netCDF dataset written")
 
 
 _FIELD_NAMES = sorted(set(StudyFile.model_fields) | set(RangeSpec.model_fields)
@@ -426,9 +474,11 @@ def _numeric_axis(name, values, unit, allowed, path, problems):
         return None
     found = dims.pop()
     rel = relative.pop() if relative else None
-    coords = np.array([q.value if rel else q.to_si() for q in quantities], dtype=np.float64)
-    return Axis(name, tuple(values), coords, "1" if rel else CF_UNITS[found],
-                _long_name(name, found, rel), unit or (rel or ""), found)
+    written = {q.unit for q in quantities}
+    kept = rel or (written.pop() if len(written) == 1 and written <= set(AS_WRITTEN) else None)
+    coords = np.array([q.value if kept else q.to_si() for q in quantities], dtype=np.float64)
+    return Axis(name, tuple(values), coords, "1" if rel else AS_WRITTEN.get(kept, CF_UNITS[found]),
+                _long_name(name, found, rel), unit or (kept or ""), found)
 
 
 def _axis_name_ok(name, path, problems):
@@ -522,7 +572,7 @@ def _tolerance(value, axis, path, problems):
         problems.append(Problem(path, value, f"give it in the unit of grid.{axis.name} "
                                              f"({axis.unit or axis.units})"))
         return None
-    tolerance = quantity.value if axis.body_relative else quantity.to_si()
+    tolerance = axis.coordinate(quantity)
     if not tolerance > 0:
         problems.append(Problem(path, value, "must be greater than 0"))
         return None
@@ -613,11 +663,32 @@ def _checked_cells(study, seed=grid.DEFAULT_SEED):
     return list(dict.fromkeys(cells))
 
 
-def cell_problems(study, limit=50):
+def _located(study, index, problem):
+    """A problem of cell ``index``'s scene at the axis value that causes it
+    (``grid.<axis>[i]``, with that value), else at ``scene.<path>``."""
+    axis = _blame(study, problem.path)
+    if axis is None:
+        return Problem(f"scene.{problem.path}", problem.value, problem.message)
+    dim_names = [d.name for d in study.dims]
+    i = grid.positions(study, index)[dim_names.index(_dim_of(study, axis).name)]
+    return Problem(f"grid.{axis.name}[{i}]", axis.values[i], problem.message)
+
+
+def cell_problems(study, limit=50, doubts=None):
     """Problems of the cells' scenes, once per axis value (or once for the base scene).
 
     Each checked cell's scene (every cell of a small grid, a bounded choice of a large one:
     :func:`_checked_cells`) is checked, resolved and packed into a kernel row, as the run will.
+
+    Parameters
+    ----------
+    study : Study
+    limit : int
+        Stop after this many problems.
+    doubts : list, optional
+        Filled with the values likely not meant (``sweep.io.plausibility``) of the scenes
+        that are right, once per axis at its first such value (the message counts the
+        others) or once for the base scene.
 
     Returns
     -------
@@ -625,27 +696,30 @@ def cell_problems(study, limit=50):
         Paths ``grid.<axis>[i]`` (the i-th value of an axis) or ``scene.<path>``.
     """
     found, seen = [], set()
-    dim_names = [d.name for d in study.dims]
+    doubted = {}  # path without the value's index -> (its first doubt, paths of its values)
     for index in _checked_cells(study):
         try:
-            resolve_scene(load_scene(grid.cell_scene(study, index), base_dir=study.base_dir))
-            continue
+            scene = load_scene(grid.cell_scene(study, index), base_dir=study.base_dir)
+            resolved = resolve_scene(scene)
         except FileProblems as err:
-            cell = err.problems
-        pos = grid.positions(study, index)
-        for p in cell:
-            axis = _blame(study, p.path)
-            if axis is None:
-                problem = Problem(f"scene.{p.path}", p.value, p.message)
-            else:
-                i = pos[dim_names.index(_dim_of(study, axis).name)]
-                problem = Problem(f"grid.{axis.name}[{i}]", axis.values[i], p.message)
-            key = (problem.path, repr(problem.value), problem.message)
-            if key not in seen:
-                seen.add(key)
-                found.append(problem)
-        if len(found) >= limit:
-            break
+            for problem in (_located(study, index, p) for p in err.problems):
+                key = (problem.path, repr(problem.value), problem.message)
+                if key not in seen:
+                    seen.add(key)
+                    found.append(problem)
+            if len(found) >= limit:
+                break
+            continue
+        for doubt in scene_doubts(scene, resolved) if doubts is not None else ():
+            axis = _blame(study, doubt.path)
+            if axis is not None and axis.name in grid.COMPUTED:
+                continue  # a value computed in metres, not a bare number written
+            doubt = _located(study, index, doubt)
+            doubted.setdefault(_INDEX.sub("", doubt.path), (doubt, set()))[1].add(doubt.path)
+    for path, (doubt, paths) in doubted.items():
+        more = len(paths) - 1
+        doubts.append(doubt if not more else doubt._replace(
+            message=f"{doubt.message} (and {more} more value{'s' * (more > 1)} of {path})"))
     return found
 
 
@@ -695,7 +769,8 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
     output : str or Path, optional
         Overrides the study's ``output``.
     check_cells : bool
-        Also check the cells' scenes (:func:`cell_problems`).
+        Also check the cells' scenes (:func:`cell_problems`) and warn of the values likely
+        not meant (``InputWarning``, once per axis).
     max_cells : int or None
         Refuse a grid of more cells (a problem at ``grid``); 0 or None: no limit.
 
@@ -768,9 +843,11 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
                   refine=refine)
     size = _size_problems(study, max_cells)
     problems += size
+    doubts = []
     if check_cells and scene and not size:
         # with the axes that are well formed, so that every problem shows at once
-        problems += cell_problems(study)
+        problems += cell_problems(study, doubts=doubts)
     if problems:
         raise FileProblems(problems, src)
+    warn(doubts)
     return study

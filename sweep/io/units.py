@@ -4,7 +4,10 @@ A value is parsed first into a :class:`Quantity` (value, unit, dimension), which
 against the field's dimension; it is turned into SI later by :meth:`Quantity.to_si`, which needs
 the body for the paper's body-relative units: ``west`` (x (B/H) g, Eq. (1)), ``v_H`` (x the
 single-shock overturning velocity, Eq. (9)) and ``alpha`` (x the slenderness angle atan(B/H)).
-Unit names are case-insensitive; ``sec`` may stand for ``s``.
+Imperial lengths, velocities and accelerations take the exact factors of the international
+yard (1959): 1 in = 0.0254 m, 1 ft = 0.3048 m, 1 yd = 0.9144 m, 1 mi = 1609.344 m.
+Unit names are case-insensitive; ``sec`` may stand for ``s``, ``inch``, ``foot`` and ``feet``
+for ``in`` and ``ft``.
 """
 import functools
 import math
@@ -16,15 +19,25 @@ from ..paper import criteria
 DIMENSIONS = ("acceleration", "velocity", "length", "angle", "angular_velocity", "frequency",
               "time", "dimensionless")
 
+# The international inch, foot, yard and mile (1959), exact in metres
+INCH = 0.0254
+FOOT = 0.3048
+YARD = 0.9144
+MILE = 1609.344
+
 # unit -> (dimension, factor to SI); keys are lower case
 _FIXED = {
     "m/s^2": ("acceleration", 1.0), "cm/s^2": ("acceleration", 0.01),
     "mm/s^2": ("acceleration", 0.001), "gal": ("acceleration", 0.01),
-    "g": ("acceleration", criteria.G),
+    "g": ("acceleration", criteria.G), "mg": ("acceleration", criteria.G / 1000.0),
     "m/s": ("velocity", 1.0), "cm/s": ("velocity", 0.01), "mm/s": ("velocity", 0.001),
     "kine": ("velocity", 0.01),
     "m": ("length", 1.0), "cm": ("length", 0.01), "mm": ("length", 0.001),
     "km": ("length", 1000.0),
+    "in": ("length", INCH), "ft": ("length", FOOT), "yd": ("length", YARD),
+    "mi": ("length", MILE),
+    "in/s": ("velocity", INCH), "ft/s": ("velocity", FOOT), "mph": ("velocity", MILE / 3600.0),
+    "in/s^2": ("acceleration", INCH), "ft/s^2": ("acceleration", FOOT),
     "rad": ("angle", 1.0), "deg": ("angle", math.pi / 180.0),
     "rad/s": ("angular_velocity", 1.0), "deg/s": ("angular_velocity", math.pi / 180.0),
     "hz": ("frequency", 1.0),
@@ -33,12 +46,16 @@ _FIXED = {
 # body-relative unit -> dimension; the factor depends on the body (see Quantity.to_si)
 _RELATIVE = {"west": "acceleration", "v_h": "velocity", "alpha": "angle"}
 _SPELLING = {"west": "west", "v_h": "v_H", "alpha": "alpha", "hz": "Hz"}
+# other spellings of a length, alone or before a ``/`` (``feet/s`` -> ``ft/s``)
+_ALIASES = {"inch": "in", "inches": "in", "foot": "ft", "feet": "ft"}
 _EXAMPLES = {"acceleration": "341.7 gal", "velocity": "100 cm/s", "length": "10 cm",
              "angle": "30 deg", "angular_velocity": "10 deg/s", "frequency": "2 Hz",
              "time": "500 ms", "dimensionless": "0.5"}
 
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
-_PATTERN = re.compile(rf"^\s*({_NUMBER})\s*([^\s\d.+-][^\s]*)?\s*$")
+# a quantity written as a string: a number, then its unit if any (also a JSON Schema pattern)
+QUANTITY_PATTERN = rf"^\s*({_NUMBER})\s*([^\s\d.+-][^\s]*)?\s*$"
+_PATTERN = re.compile(QUANTITY_PATTERN)
 
 
 @functools.lru_cache(maxsize=256)
@@ -46,7 +63,9 @@ def _normalize(unit):
     """Canonical lower-case spelling: ``cm/sec2`` -> ``cm/s^2``, ``m/s/s`` -> ``m/s^2``."""
     u = unit.strip().lower().replace("**", "^").replace("sec", "s")
     u = re.sub(r"/s/s$", "/s^2", u)
-    return re.sub(r"/s2$", "/s^2", u)
+    u = re.sub(r"/s2$", "/s^2", u)
+    head, slash, rate = u.partition("/")
+    return _ALIASES.get(head, head) + slash + rate
 
 
 def units_of(dimension):
@@ -54,6 +73,13 @@ def units_of(dimension):
     names = [_SPELLING.get(u, u) for u, (d, _) in _FIXED.items() if d == dimension]
     names += [_SPELLING[u] for u, d in _RELATIVE.items() if d == dimension]
     return tuple(names)
+
+
+def listing():
+    """Every dimension with its unit names, SI first, for help texts:
+    ``length: m, cm, ... | acceleration: m/s^2, ... | ...``."""
+    return " | ".join(f"{d.replace('_', ' ')}: {', '.join(units_of(d))}" for d in DIMENSIONS
+                      if units_of(d))
 
 
 def _article(dimension):

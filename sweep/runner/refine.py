@@ -149,9 +149,10 @@ def narrow(brackets, lines, midpoints, overturned):
 
 
 def _raw(axis, value):
-    """A coordinate of ``axis`` as a scene value: ``"1.25 west"``, ``"0.3 m/s"``, ``0.25``."""
+    """A coordinate of ``axis`` as a scene value: ``"1.25 west"``, ``"45.0 deg"``,
+    ``"0.3 m/s"``, ``0.25``."""
     value = float(value)
-    if axis.body_relative:
+    if axis.written_coords:
         return f"{value!r} {axis.unit}"
     # coordinates are SI: written with the SI unit, as a bare number may mean another unit
     si = units.units_of(axis.dimension) if axis.dimension in units.DIMENSIONS else ()

@@ -10,7 +10,8 @@ from kernels.api import MAX_LOG, SceneResult
 
 from ..groundmotion import applied
 from ..groundmotion.intensity import G
-from ..io.problems import FileProblems, Problem
+from ..io.plausibility import scene_doubts
+from ..io.problems import FileProblems, Problem, warn
 from ..io.scene_schema import MAX_HISTORY, load_scene, resolve_scene
 from .verdict import verdict
 
@@ -39,6 +40,9 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     ``solver.dt_out`` seconds (its ``source`` attribute names the scene file, if any).
     The result lists the first ``max_log`` impacts and counts them all.
 
+    Values that are likely not what was meant (``B: 30``, a bare number in m) are warned of
+    as ``InputWarning`` s (``sweep.io.plausibility``).
+
     Raises
     ------
     FileProblems
@@ -46,7 +50,9 @@ def simulate(scene, history=False, max_log=MAX_LOG):
         history of more than ``MAX_HISTORY`` samples too.
     """
     from kernels import run_scene
-    resolved = resolve_scene(load_scene(scene))
+    checked = load_scene(scene)
+    resolved = resolve_scene(checked)
+    warn(scene_doubts(checked, resolved))
     if history:
         _check_history(resolved, None if isinstance(scene, dict) else scene)
     motion = applied.peaks(resolved["excitation"]["horizontal"])

@@ -123,8 +123,10 @@ def test_knet_errors_name_the_line(tmp_path):
 def test_knet_refuses_units_and_dt(tmp_path):
     path = tmp_path / "X.NS"
     path.write_text(_knet_text(_signal()))
-    with pytest.raises(RecordError, match=r"units apply to .*gives its units \(gal\)"):
+    with pytest.raises(RecordError, match=r"X.NS: line 14: the header's Scale Factor gives the "
+                                          r"accelerations in gal, not g \(units: g\)"):
         read_record_file(path, "g")
+    assert read_record_file(path, "cm/s^2").units == "gal"  # the same unit, written otherwise
     with pytest.raises(RecordError, match="dt applies to one-column files only"):
         read_record_file(path, dt=0.01)
 
@@ -188,7 +190,9 @@ def test_cosmos_units_from_the_header(tmp_path):
     path.write_text("\n".join(_cosmos_channel(g, 0.02, "Up", units=(5, "cm/sec"))) + "\n")
     with pytest.raises(RecordError, match=r"line 48: units code 05 is not an acceleration unit"):
         read_record_file(path)
-    with pytest.raises(RecordError, match="units apply to two-column files only"):
+    path.write_text("\n".join(_cosmos_channel(g, 0.02, "Up", units=(2, "g"))) + "\n")
+    with pytest.raises(RecordError, match=r"line 48: the header gives the accelerations in g, "
+                                          r"not gal"):
         read_record_file(path, "gal")
 
 

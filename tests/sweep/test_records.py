@@ -93,7 +93,7 @@ def test_at2_errors(tmp_path):
     velocity.write_text("x\ny\nVELOCITY TIME SERIES IN UNITS OF CM/S\nNPTS= 1, DT= .01\n1\n")
     with pytest.raises(RecordError, match="not an acceleration"):
         read_at2(velocity)
-    with pytest.raises(RecordError, match="units apply to two-column files only"):
+    with pytest.raises(RecordError, match=r"bad.AT2: a PEER .AT2 file is in g, not gal"):
         read_record_file(tmp_path / "bad.AT2", "gal")
 
 

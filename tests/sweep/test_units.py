@@ -125,3 +125,38 @@ def test_sine_acceleration_amplitude(raw, frequency, expected):
 def test_acceleration_amplitude_rejects_other_dimensions():
     with pytest.raises(ValueError):
         acceleration_amplitude(parse_quantity("1 deg", "angle"), 1.0)
+
+
+# Exact factors of the international yard and pound agreement (1959): 1 yd = 0.9144 m
+@pytest.mark.parametrize("unit, dimension, factor", [
+    ("in", "length", 0.0254), ("inch", "length", 0.0254), ("inches", "length", 0.0254),
+    ("ft", "length", 0.3048), ("foot", "length", 0.3048), ("feet", "length", 0.3048),
+    ("yd", "length", 0.9144), ("mi", "length", 1609.344),
+    ("in/s", "velocity", 0.0254), ("ft/s", "velocity", 0.3048), ("feet/sec", "velocity", 0.3048),
+    ("mph", "velocity", 0.44704),                    # 1609.344 m / 3600 s
+    ("in/s^2", "acceleration", 0.0254), ("ft/s2", "acceleration", 0.3048),
+    ("ft/s/s", "acceleration", 0.3048), ("FT/SEC**2", "acceleration", 0.3048),
+    ("mg", "acceleration", 0.00980665),
+])
+def test_imperial_units_exact(unit, dimension, factor):
+    assert fixed_factor(unit, dimension) == pytest.approx(factor, rel=1e-15, abs=0)
+
+
+def test_imperial_units_agree_with_each_other():
+    length = lambda text: parse_quantity(text, "length").to_si()  # noqa: E731
+    assert length("12 in") == pytest.approx(length("1 ft"), rel=1e-15)
+    assert length("3 ft") == pytest.approx(length("1 yd"), rel=1e-15)
+    assert length("5280 ft") == pytest.approx(length("1 mi"), rel=1e-15)
+    assert parse_quantity("60 mph", "velocity").to_si() == pytest.approx(
+        length("1 mi") / 60.0, rel=1e-15)                # a mile a minute
+    assert parse_quantity("32.174 ft/s^2", "acceleration").to_si() == pytest.approx(
+        9.80665, rel=2e-6)                               # standard gravity, 32.1740 ft/s^2
+
+
+def test_imperial_units_listed_and_checked():
+    assert units_of("length") == ("m", "cm", "mm", "km", "in", "ft", "yd", "mi")
+    assert {"in/s", "ft/s", "mph"} <= set(units_of("velocity"))
+    assert {"in/s^2", "ft/s^2"} <= set(units_of("acceleration"))
+    with pytest.raises(ValueError, match="'in' is a unit of length, expected an acceleration"):
+        parse_quantity("1 in", "acceleration")
+    assert parse_quantity("2 min", "time").to_si() == 120.0  # minutes, not miles

@@ -1,4 +1,4 @@
-"""PEER NGA ``.AT2`` files: acceleration in g.
+"""PEER NGA ``.AT2`` files: acceleration in g (a ``units:`` other than g is refused).
 
 The format: four header lines, the fourth giving NPTS and DT (``NPTS= 5372, DT= .0100 SEC`` or
 the older ``5372 .0100 NPTS, DT``), then NPTS values in any number of columns.
@@ -9,14 +9,16 @@ import re
 import numpy as np
 
 from ...paper import criteria
-from .base import (MAX_SAMPLES, RecordError, check_finite, line_error, make_record,
-                   parse_lines, read_lines)
+from .base import (MAX_SAMPLES, RecordError, check_finite, check_units, line_error,
+                   make_record, parse_lines, read_lines)
 
 _HEADER_LINES = 4
 
 
-def read_at2(path):
-    """Read a PEER NGA ``.AT2`` file (acceleration in g) into m/s^2."""
+def read_at2(path, units=None):
+    """Read a PEER NGA ``.AT2`` file (acceleration in g) into m/s^2; ``units``, if given,
+    must be g."""
+    check_units(units, "g", criteria.G, path, said="a PEER .AT2 file is in")
     lines = read_lines(path)
     if len(lines) <= _HEADER_LINES:
         raise RecordError(f"{path}: not a PEER .AT2 file (fewer than 5 lines)")
@@ -30,7 +32,7 @@ def read_at2(path):
         raise RecordError(f"{path}: header says NPTS = {npts}, found {len(values)} values")
     check_finite(values, np.repeat(numbers, counts), path)
     provenance = f"{path}: PEER NGA AT2, {lines[1].strip()}, NPTS = {npts}, DT = {dt:g} s, g"
-    return make_record(path, dt, values * criteria.G, provenance)
+    return make_record(path, dt, values * criteria.G, provenance, "g")
 
 
 def _npts_dt(line, path):

@@ -2,13 +2,17 @@
 
 A reader turns one file into a :class:`Record`: uniformly sampled acceleration in m/s^2.  A file
 it cannot take raises :class:`RecordError` with a message that starts with the file's path and,
-where one line is at fault, names it (``line 23: expected 8 integers, got 'abc'``).
+where one line is at fault, names it (``line 23: expected 8 integers, got 'abc'``).  A unit the
+user gives (``units:``) that is not the one the file states is refused (:func:`check_units`).
 """
 import functools
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from ..units import fixed_factor
 
 # Most samples a record may have once on its uniform grid: 80 MB of float64, 28 hours at
 # dt = 0.01 s.  A file of a few rows whose median step is tiny would otherwise be resampled
@@ -35,12 +39,15 @@ class Record:
         Acceleration [m/s^2], read-only.
     provenance : str
         Where the data come from and what was done to them.
+    units : str
+        Acceleration unit the file's numbers were read in (m/s^2 for the bundled records).
     """
 
     name: str
     dt: float
     samples: np.ndarray
     provenance: str
+    units: str = "m/s^2"
 
     @property
     def pga(self):
@@ -147,8 +154,27 @@ def check_finite(values, line_of, path, what="value"):
         raise line_error(path, line_of[k], f"{what} {k + 1} is not a finite number: {values[k]}")
 
 
-def make_record(path, dt, samples, provenance):
-    """The :class:`Record` of a file: ``samples`` [m/s^2] every ``dt`` [s], checked and frozen.
+def check_units(given, stated, factor, path, line=None,
+                said="the file gives its accelerations in"):
+    """Refuse a ``given`` acceleration unit (the scene's ``units:``, None: none given) that is
+    not the unit ``stated`` by the file (``factor`` to m/s^2), on ``line`` if one line says it.
+
+    Raises
+    ------
+    RecordError
+        Naming the file's unit and the line that states it.
+    """
+    if given is None or math.isclose(fixed_factor(given, "acceleration"), factor,
+                                     rel_tol=1e-12):
+        return
+    at = f"line {line}: " if line else ""
+    raise RecordError(f"{path}: {at}{said} {stated}, not {given} (units: {given}): leave "
+                      "units: out")
+
+
+def make_record(path, dt, samples, provenance, units="m/s^2"):
+    """The :class:`Record` of a file: ``samples`` [m/s^2] every ``dt`` [s], checked and frozen;
+    ``units``: the unit the file's numbers were read in.
 
     Raises
     ------
@@ -168,4 +194,4 @@ def make_record(path, dt, samples, provenance):
     if bad.size:
         raise RecordError(f"{path}: sample {bad[0] + 1} leaves the float range in m/s^2")
     samples.flags.writeable = False
-    return Record(str(path), float(dt), samples, provenance)
+    return Record(str(path), float(dt), samples, provenance, units)

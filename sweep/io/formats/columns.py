@@ -1,28 +1,38 @@
 """Text files of numbers in columns: time and acceleration (two columns), or accelerations alone
 (one column, or any number of values per line read row by row) with the sample step given by
 the user.  ``#`` starts a comment; blank lines are skipped.
+
+A comment may state the acceleration unit: ``# acceleration [g]``, ``# units: gal``, ``# m/s^2``
+(:func:`stated_units`).  The numbers are read in that unit unless the user gives another, which
+is refused; without either they are in m/s^2.
 """
+import re
+
 import numpy as np
 
 from ..units import fixed_factor
-from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, line_error,
-                   make_record, parse_lines, read_lines)
+from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, check_units,
+                   line_error, make_record, parse_lines, read_lines)
 
 # Times in text files carry a few decimals; a grid is uniform if every time is within this
 # fraction of dt of t0 + k*dt (a wider jitter is a non-uniform file and is resampled).
 _UNIFORM_TOL = 0.01
 _DT_DIGITS = 12  # significant digits kept of dt fitted to printed times (0.02, not 0.0199...)
+DEFAULT_UNITS = "m/s^2"
+_WORD = re.compile(r"[A-Za-z][A-Za-z0-9/^*]*")  # a unit's spelling: m/s^2, cm/sec2, gal, g
+_AFTER_NUMBER = re.compile(r"\d\s*$")  # "0.35 g", "342 gal": a value, not the column's unit
+_INTRODUCED = re.compile(r"(?:\b(?:in|units?|of)\s*[:=]?|[\[(])\s*$", re.IGNORECASE)
 
 
-def read_two_column(path, units="m/s^2"):
+def read_two_column(path, units=None):
     """Read a text file of two columns, time [s] and acceleration.
 
     Parameters
     ----------
     path : str or Path
-    units : str
-        Unit of the acceleration column: ``m/s^2`` (default), ``g``, ``gal`` or any fixed
-        acceleration unit of :mod:`sweep.io.units`.
+    units : str, optional
+        Unit of the acceleration column: ``m/s^2``, ``g``, ``gal`` or any fixed acceleration
+        unit of :mod:`sweep.io.units`; default the unit a comment states, else m/s^2.
 
     Returns
     -------
@@ -30,8 +40,9 @@ def read_two_column(path, units="m/s^2"):
         Times are taken relative to the first row.  Non-uniform times are resampled linearly
         onto a uniform grid whose step is the median step; the provenance says so.
     """
-    factor = _factor(units, path)
-    numbers, lines = _data_lines(path)
+    text = read_lines(path)
+    units, factor, said = _units(units, text, path)
+    numbers, lines = _data_lines(text, path)
     values, counts = parse_lines(lines, numbers, path, bad="cannot read as a two-column text "
                                                           "file: {token!r} is not a number")
     check_counts(counts, 2, numbers, path,
@@ -40,11 +51,11 @@ def read_two_column(path, units="m/s^2"):
     check_finite(t, numbers, path, "the time of data row")
     check_finite(a, numbers, path, "the acceleration of data row")
     dt, samples, note = _uniform(t, a * factor, numbers, path)
-    provenance = f"{path}: two columns time/acceleration in {units}, n = {len(t)}{note}"
-    return make_record(path, dt, samples, provenance)
+    provenance = f"{path}: two columns time/acceleration in {said}, n = {len(t)}{note}"
+    return make_record(path, dt, samples, provenance, units)
 
 
-def read_single_column(path, dt, units="m/s^2"):
+def read_single_column(path, dt, units=None):
     """Read a text file of accelerations alone, sampled every ``dt`` [s].
 
     Parameters
@@ -53,16 +64,68 @@ def read_single_column(path, dt, units="m/s^2"):
         One value per line, or several read row by row.
     dt : float
         Sample step [s], from the scene: the file has no times.
-    units : str
+    units : str, optional
         Unit of the values, as for :func:`read_two_column`.
     """
-    factor = _factor(units, path)
-    numbers, lines = _data_lines(path)
+    text = read_lines(path)
+    units, factor, said = _units(units, text, path)
+    numbers, lines = _data_lines(text, path)
     values, counts = parse_lines(lines, numbers, path)
     check_finite(values, np.repeat(numbers, counts), path)
-    provenance = (f"{path}: one column of accelerations in {units}, n = {len(values)}, "
+    provenance = (f"{path}: one column of accelerations in {said}, n = {len(values)}, "
                   f"dt = {dt:g} s given in the scene")
-    return make_record(path, dt, values * factor, provenance)
+    return make_record(path, dt, values * factor, provenance, units)
+
+
+def stated_units(text):
+    """The acceleration units the comments of a file state: ``[(unit, factor to m/s^2, line
+    number)]``, one for each comment line that names one unit.
+
+    A unit is named where it is compound (``m/s^2``), in brackets (``[g]``, ``(gal)``), after
+    ``in``, ``unit(s)`` or ``of`` (``units: g``), or alone in its comment (``# gal``).  A unit
+    right after a number (``peak 0.35 g``) is a value's, and a line that names several
+    (``converted from g to m/s^2``) states none.
+    """
+    found = []
+    for number, line in enumerate(text, 1):
+        comment = line.partition("#")[2]
+        named = {}
+        for match in _WORD.finditer(comment):
+            before = comment[:match.start()]
+            if _AFTER_NUMBER.search(before) or not (
+                    "/" in match[0] or comment.strip() == match[0] or _INTRODUCED.search(before)):
+                continue
+            try:
+                named.setdefault(fixed_factor(match[0], "acceleration"), match[0])
+            except ValueError:
+                continue  # not an acceleration unit
+        if len(named) == 1:
+            (factor, unit), = named.items()
+            found.append((unit, factor, number))
+    return found
+
+
+def _units(given, text, path):
+    """``(unit, factor to m/s^2, how the provenance says it)`` of a file's numbers: the unit
+    its comments state (:func:`stated_units`), which ``given`` (``units:``) must equal, else
+    ``given``, else m/s^2.  Comments that state different units need ``given``."""
+    stated = {}  # factor -> (unit, line) of the first line that states it
+    for unit, factor, line in stated_units(text):
+        stated.setdefault(factor, (unit, line))
+    if len(stated) > 1:
+        lines = ", ".join(f"line {line}: {unit}" for unit, line in stated.values())
+        if given is None:
+            raise RecordError(f"{path}: the comments state different units ({lines}): give "
+                              "units:")
+        return given, _factor(given, path), f"{given} (units:; the comments state {lines})"
+    if stated:
+        (factor, (unit, line)), = stated.items()
+        check_units(given, unit, factor, path, line, said="a comment gives the accelerations "
+                                                           "in")
+        return unit, factor, f"{unit} (stated on line {line})"
+    if given is not None:
+        return given, _factor(given, path), f"{given} (units:)"
+    return DEFAULT_UNITS, 1.0, f"{DEFAULT_UNITS} (the default: no units: nor a comment)"
 
 
 def _factor(units, path):
@@ -72,10 +135,11 @@ def _factor(units, path):
         raise RecordError(f"{path}: {err}") from None
 
 
-def _data_lines(path):
-    """``(numbers, lines)`` of the lines that hold data, comments cut off; numbers count from 1."""
+def _data_lines(text, path):
+    """``(numbers, lines)`` of the lines of ``text`` that hold data, comments cut off; numbers
+    count from 1."""
     numbers, lines = [], []
-    for number, line in enumerate(read_lines(path), 1):
+    for number, line in enumerate(text, 1):
         data = line.split("#", 1)[0]
         if data.strip():
             numbers.append(number)

@@ -27,8 +27,8 @@ import numpy as np
 
 from ...paper import criteria
 from ..units import fixed_factor
-from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, fixed_width,
-                   line_error, make_record, parse_lines, read_lines)
+from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, check_units,
+                   fixed_width, line_error, make_record, parse_lines, read_lines)
 
 EXTENSIONS = (".v2", ".v2c")
 # COSMOS table 2, the acceleration units: code -> (name, factor to m/s^2)
@@ -52,7 +52,7 @@ line, and an example of the acceleration block's first line for messages."""
 _Channel = namedtuple("_Channel", "name description dt block")
 
 
-def read_cosmos(path, component=None):
+def read_cosmos(path, component=None, units=None):
     """Read the corrected acceleration of one component of a COSMOS or CSMIP Volume 2 file.
 
     Parameters
@@ -62,6 +62,8 @@ def read_cosmos(path, component=None):
         Which component, in a file that holds several: its place in the file (1, 2, ...) or its
         name, the orientation its header gives (``360 Deg``, ``Up``; case, spaces and a
         trailing ``deg`` ignored).
+    units : str, optional
+        Must be the unit the acceleration block's header gives, if given.
 
     Returns
     -------
@@ -84,14 +86,16 @@ def read_cosmos(path, component=None):
     k = _choose(channels, component, path)
     channel = channels[k]
     match, announced, values, line_of = channel.block
-    units, factor = _units(match, announced, path)
+    stated, factor = _units(match, announced, path)
+    check_units(units, stated, factor, path, announced + 1,
+                said="the header gives the accelerations in")
     check_finite(values, line_of, path)
     dt = channel.dt if channel.dt is not None else _step(match["dt"], announced, path)
     provenance = (f"{path}: {dialect.label}, {channel.description}, component {k + 1} of "
                   f"{len(channels)} ({channel.name}), acceleration block of line "
-                  f"{announced + 1}: n = {len(values)}, dt = {dt:g} s, in {units}; corrected "
+                  f"{announced + 1}: n = {len(values)}, dt = {dt:g} s, in {stated}; corrected "
                   f"by the network (Volume 2), used as given")
-    return make_record(path, dt, values * factor, provenance)
+    return make_record(path, dt, values * factor, provenance, stated)
 
 
 def _channels(lines, dialect, path):

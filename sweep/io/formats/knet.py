@@ -16,8 +16,8 @@ import re
 
 import numpy as np
 
-from .base import (RecordError, check_counts, check_finite, line_error, make_record,
-                   parse_lines, read_lines)
+from .base import (RecordError, check_counts, check_finite, check_units, line_error,
+                   make_record, parse_lines, read_lines)
 
 EXTENSIONS = (".ns", ".ew", ".ud", ".ns1", ".ew1", ".ud1", ".ns2", ".ew2", ".ud2")
 LABELS = ("Origin Time", "Lat.", "Long.", "Depth. (km)", "Mag.", "Station Code", "Station Lat.",
@@ -36,8 +36,9 @@ _SCALE = re.compile(r"^\s*([0-9.Ee+-]+)\s*\(gal\)\s*/\s*([0-9.Ee+-]+)\s*$", re.I
 _NUMBER = re.compile(r"^\s*(\S+)\s*$")
 
 
-def read_knet(path):
-    """Read a K-NET or KiK-net ASCII file into m/s^2, its mean removed.
+def read_knet(path, units=None):
+    """Read a K-NET or KiK-net ASCII file into m/s^2, its mean removed; ``units``, if given,
+    must be the header's (gal).
 
     Raises
     ------
@@ -58,6 +59,8 @@ def read_knet(path):
     frequency = _number(_FREQUENCY, header, "Sampling Freq(Hz)", "e.g. 100Hz", path)[0]
     numerator, denominator = _number(_SCALE, header, "Scale Factor", "e.g. 7845(gal)/8223790",
                                      path)
+    check_units(units, "gal", GAL, path, LABELS.index("Scale Factor") + 1,
+                said="the header's Scale Factor gives the accelerations in")
     max_acc = _number(_NUMBER, header, "Max. Acc. (gal)", "in gal", path)[0]
     numbers = np.arange(len(LABELS) + 1, len(lines) + 1)
     values, counts = parse_lines(lines[len(LABELS):], numbers, path, parse=_count,
@@ -82,7 +85,7 @@ def read_knet(path):
                   f"scale factor {header['Scale Factor']}, mean of the whole record "
                   f"({mean:.6g} gal) removed, peak {peak:.6g} gal (header's Max. Acc. "
                   f"{max_acc:g}), n = {len(gal)}, dt = {1 / frequency:g} s")
-    return make_record(path, 1.0 / frequency, gal * GAL, provenance)
+    return make_record(path, 1.0 / frequency, gal * GAL, provenance, "gal")
 
 
 def _count(token):

@@ -1,0 +1,135 @@
+"""Values that are valid but likely not what was meant: the warnings of a scene.
+
+A bare number is in SI units, so ``B: 30`` is a body 30 m wide and ``phase: 90`` is 90 rad; a
+file in m/s^2 read with ``units: g`` shakes the floor ten times too hard.  :func:`scene_doubts`
+finds such values in a checked scene and its resolved SI form, each as a
+:class:`~sweep.io.problems.Problem` whose message starts with the value as written
+(``30 (a bare number is in m): a body 30 m wide; did you mean 30 cm?``);
+:func:`~sweep.io.problems.warn` issues them as ``InputWarning`` s, which never stop the work.
+A study reports each once per axis (``sweep.io.study_schema.cell_problems``).
+"""
+import math
+from pathlib import Path
+
+from ..paper.criteria import G
+from . import units
+from .problems import Problem
+
+# Bodies that rock are furniture, equipment, tombstones and statues, 0.1 to a few metres; a
+# bare number (metres) above this was more likely meant in cm or mm.
+MAX_BARE_SIZE = 10.0  # m
+# A bare angle (radians) beyond a full turn was more likely meant in degrees.
+MAX_BARE_ANGLE = 2.0 * math.pi  # rad
+# Strong-motion records reach about 1-2 g horizontally, exceptionally 3 g; a scaled PGA above
+# this is more likely a record read in the wrong units or scaled twice.
+MAX_PGA = 3.0 * G  # m/s^2
+# A file read in g whose numbers exceed this (5 g) more likely holds m/s^2 or gal.
+MAX_PEAK_IN_G = 5.0
+# Floors rock bodies at 0.1-20 Hz; above this a frequency is more likely an angular
+# frequency in rad/s or a sampling rate.
+MAX_FREQUENCY = 100.0  # Hz
+# Dry stone, wood, concrete and steel give friction coefficients of 0.2-1; above this a
+# coefficient is more likely a typo, a percentage or an angle of friction, unless it is a power
+# of ten (10, 100, ...): the usual way to keep a body from sliding at all.
+MAX_FRICTION = 2.0
+
+_SIZES = {"B": "a body {:g} m wide", "H": "a body {:g} m tall",
+          "i_g": "a radius of gyration of {:g} m"}
+_FRICTION = ("mu", "mu_s", "mu_k", "mu_edge_s", "mu_edge_k")
+_SCALING = ("scale_with", "scale", "pga", "pgv")
+
+
+def _quantities(model, path=""):
+    """``(dotted path, Quantity)`` of every quantity of a checked scene, sections included."""
+    for key in type(model).model_fields:
+        value, where = getattr(model, key), f"{path}.{key}" if path else key
+        if isinstance(value, units.Quantity):
+            yield where, value
+        elif hasattr(type(value), "model_fields"):
+            yield from _quantities(value, where)
+
+
+def _written(q):
+    """A quantity as written, with what a bare number means: ``30 (a bare number is in m)``."""
+    if q.unit:
+        return str(q)
+    return f"{q.value:g} (a bare number is in {units.units_of(q.dimension)[0]})"
+
+
+def _quantity_doubt(path, q):
+    """The doubt of one quantity, or None."""
+    if not q.unit and path.startswith("body.") and q.value > MAX_BARE_SIZE:
+        return Problem(path, q.value, f"{_written(q)}: {_SIZES[path[5:]].format(q.value)}; "
+                                      f"did you mean {q.value:g} cm?")
+    if not q.unit and q.dimension == "angle" and abs(q.value) > MAX_BARE_ANGLE:
+        return Problem(path, q.value, f"{_written(q)}: {q.value / (2 * math.pi):.3g} turns; "
+                                      f"did you mean {q.value:g} deg?")
+    if q.dimension == "frequency" and q.to_si() > MAX_FREQUENCY:
+        return Problem(path, str(q), f"{_written(q)}: above {MAX_FREQUENCY:g} Hz; if it is an "
+                                     f"angular frequency in rad/s, write "
+                                     f"{q.to_si() / (2 * math.pi):.4g} Hz")
+    return None
+
+
+def _no_sliding(mu):
+    """True for 10, 100, 1000, ...: a coefficient meant to keep the body from sliding."""
+    return mu >= 10.0 and mu == 10.0 ** round(math.log10(mu))
+
+
+def _friction_doubts(contact):
+    return [Problem(f"contact.{key}", value, f"{value:g}: a friction coefficient above "
+                                             f"{MAX_FRICTION:g}, where stone, wood and steel "
+                                             "give 0.2-1 (a power of ten such as 10 keeps "
+                                             "the body from sliding)")
+            for key in _FRICTION if (value := getattr(contact, key)) is not None
+            and value > MAX_FRICTION and not _no_sliding(value)]
+
+
+def _record_doubt(component, g, ground):
+    """The doubt of a record or synthetic ``component`` (``g`` as checked, ``ground`` resolved):
+    numbers read in g that look like m/s^2, else a PGA after scaling above ``MAX_PGA``; or
+    None."""
+    rec = ground["source"]
+    factor = units.fixed_factor(rec.units, "acceleration")
+    peak = rec.pga / factor  # the largest of the file's numbers
+    if factor == G and peak > MAX_PEAK_IN_G:
+        key, said = (("units", g.units) if g.units is not None else
+                     ("path", f"{Path(g.path).name} (in g, as its comments state)"))
+        return Problem(f"excitation.{component}.{key}", getattr(g, key),
+                       f"{said}: the file's numbers peak at {peak:.3g}, a PGA of {peak:.3g} g; "
+                       "are they in m/s^2 or gal?")
+    pga = abs(ground["scale"]) * rec.pga
+    if not pga > MAX_PGA:
+        return None
+    key = next((name for name in _SCALING if getattr(g, name) is not None),
+               "model" if g.kind == "synthetic" else "name" if g.name is not None else "path")
+    said = Path(g.path).name if key == "path" else getattr(g, key)
+    return Problem(f"excitation.{component}.{key}", str(getattr(g, key)),
+                   f"{said}: the motion's PGA after scaling is {pga / G:.3g} g, above "
+                   f"{MAX_PGA / G:g} g; are the record's units and the scale meant?")
+
+
+def scene_doubts(scene, resolved):
+    """The values of a checked scene that are likely not what was meant.
+
+    Parameters
+    ----------
+    scene : sweep.io.scene_schema.Scene
+        As ``load_scene`` returns it: it tells which numbers were written bare.
+    resolved : dict
+        Its ``resolve_scene``: the records read and scaled.
+
+    Returns
+    -------
+    list of Problem
+        Paths below the scene (``body.B``, ``excitation.horizontal.pga``), the value given,
+        and a message that starts with it; at most one per record component.
+    """
+    found = [doubt for path, q in _quantities(scene)
+             if (doubt := _quantity_doubt(path, q)) is not None]
+    found += _friction_doubts(scene.contact)
+    for key, ground in resolved["excitation"].items():
+        if ground["kind"] == "record":
+            doubt = _record_doubt(key, getattr(scene.excitation, key), ground)
+            found += [doubt] if doubt is not None else []
+    return found
