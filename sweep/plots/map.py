@@ -55,7 +55,9 @@ def _value_text(coord, value):
     """'mu = 0.4', 'frequency = 4 Hz', 'amplitude = 1.5 west', 'record = elcentro1940_ns'."""
     if coord.dtype.kind not in "fi":
         return f"{coord.name} = {value}"
-    unit = coord.attrs.get("study_unit") or coord.attrs.get("units", "")
+    unit = coord.attrs.get("study_unit")
+    if unit not in RELATIVE_LABELS:  # the coordinate is in its units (SI, or degree)
+        unit = coord.attrs.get("units", "")
     return f"{coord.name} = {value:.4g}" + ("" if unit in ("", "1") else f" {unit}")
 
 
