@@ -4,7 +4,8 @@ A *resolved scene* is a plain nested dict in SI units (what ``sweep.schema`` pro
 YAML file, or what a notebook writes by hand)::
 
     {"body": {"B": 0.1, "H": 0.3, "i_g": None},            # i_g: radius of gyration about G
-     "contact": {"mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y"},
+     "contact": {"mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
+                 "landing": "flat" | "face_friction" | "corner"},
      "excitation": {"horizontal": GROUND, "vertical": GROUND},
      "initial": {"theta", "omega", "x_dot", "y_dot", "lift"},
      "solver": {"method": "adaptive" | "fixed", "rtol", "atol", "dt", "max_step", "t_end",
@@ -31,7 +32,7 @@ from .watchdog import Watchdog, control
 DEFAULTS = {
     "body": {"i_g": None},
     "contact": {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
-                "e_x": -0.8, "e_y": 0.2},
+                "e_x": -0.8, "e_y": 0.2, "landing": "flat"},
     "initial": {"theta": 0.0, "omega": 0.0, "x_dot": 0.0, "y_dot": 0.0, "lift": 0.0},
     "solver": {"method": "adaptive", "rtol": 1e-8, "atol": 1e-10, "dt": 1e-3,
                "max_step": 0.05, "t_end": 10.0, "max_steps": 5_000_000,
@@ -149,6 +150,10 @@ def scene_row(scene, records=None):
     row[codes.P_E_Y] = _number(contact["e_y"], "contact.e_y")
     if not -1 <= row[codes.P_E_X] <= 1 or not 0 <= row[codes.P_E_Y] <= 1:
         raise ValueError("`contact.e_x` must lie in [-1, 1] and `contact.e_y` in [0, 1]")
+    if contact["landing"] not in codes.LANDING_NAMES:
+        raise ValueError(f"`contact.landing` must be one of {codes.LANDING_NAMES}, "
+                         f"got {contact['landing']!r}")
+    row[codes.P_LANDING] = codes.LANDING_NAMES.index(contact["landing"])
     for key, index in (("theta", codes.P_THETA0), ("omega", codes.P_OMEGA0),
                        ("x_dot", codes.P_U0), ("y_dot", codes.P_V0), ("lift", codes.P_LIFT0)):
         row[index] = _number(initial[key], f"initial.{key}")

@@ -67,14 +67,21 @@ HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
  G_REC_OFF, G_REC_N, G_REC_DT) = range(13)
 G_SIZE = 13
 
-# Scene parameter row.  Body [m, m, m^2], contact [-], initial state, solver options, then
-# the horizontal ground (P_GX ...) and the vertical ground (P_GY ...).
+# --- landing laws after a translation jump (scene key ``contact.landing``) -----------------
+# flat: the two-contact impulse (PHYSICS 2.3); face_friction: one contact at the middle of
+# the base whose friction impulse turns the body; corner: the leading corner strikes first
+# (PHYSICS 2.2).  docs/landing.md derives them.
+LANDING_FLAT, LANDING_FACE_FRICTION, LANDING_CORNER = range(3)
+LANDING_NAMES = ("flat", "face_friction", "corner")
+
+# Scene parameter row.  Body [m, m, m^2], contact [-] (P_LANDING: a LANDING_* code), initial
+# state, solver options, then the horizontal ground (P_GX ...) and the vertical ground (P_GY ...).
 (P_B, P_H, P_I2,
- P_MU_S, P_MU_K, P_MU_EDGE_S, P_MU_EDGE_K, P_E_X, P_E_Y,
+ P_MU_S, P_MU_K, P_MU_EDGE_S, P_MU_EDGE_K, P_E_X, P_E_Y, P_LANDING,
  P_THETA0, P_OMEGA0, P_U0, P_V0, P_LIFT0,
  P_METHOD, P_RTOL, P_ATOL, P_DT, P_MAX_STEP, P_T_END, P_MAX_STEPS, P_MAX_EVENTS,
- P_THETA_OVER, P_ZENO_DT, P_DT_OUT) = range(25)
-P_GX = 25
+ P_THETA_OVER, P_ZENO_DT, P_DT_OUT) = range(26)
+P_GX = 26
 P_GY = P_GX + G_SIZE
 N_PAR = P_GY + G_SIZE
 
@@ -84,7 +91,8 @@ N_PAR = P_GY + G_SIZE
 GROUND_FIELDS = ("kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
                  "rec_off", "rec_n", "rec_dt")                       # G_KIND ... G_REC_DT
 SCENE_FIELDS = (("body", ("B", "H", "i2")),
-                ("contact", ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y")),
+                ("contact", ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
+                             "landing")),
                 ("initial", ("theta", "omega", "u", "v", "lift")),
                 ("solver", ("method", "rtol", "atol", "dt", "max_step", "t_end", "max_steps",
                             "max_events", "theta_over", "zeno_dt", "dt_out")),

@@ -4,10 +4,12 @@ Pre- to post-impact velocities of the full state q; impulses per unit mass.  The
 impulse is (1 + e_x) times the impulse that would stop the corner's tangential velocity
 while the normal restitution V_n+ = -e_y V_n- holds: e_x = 0 is the sticking impact
 (Housner's law when e_y = 0, 2.1), e_x = -1 gives no tangential impulse (a frictionless
-corner).  If that impulse leaves the edge's friction cone |P_t| <= mu_edge_s P_n the corner
-slips during the impact and P_t = -sigma mu_edge_k P_n (step 3).  No impact may gain energy
-(step 6): a law that would is replaced by the plastic sticking law, and if that still gains
-energy, by the frictionless plastic one, which cannot.
+corner).  If that impulse leaves the friction cone |P_t| <= mu_s P_n the corner slips
+during the impact and P_t = -sigma mu_k P_n (step 3).  No impact may gain energy (step 6):
+a law that would is replaced by the plastic sticking law, and if that still gains energy,
+by the frictionless plastic one, which cannot.  A corner takes the edge's friction; the
+same law at the middle of the base (s = 0), with the surface's friction, is the
+``face_friction`` landing (docs/landing.md).
 """
 import math
 
@@ -67,11 +69,11 @@ def restore_velocities(q, u, v, omega):
 
 
 @jit
-def corner_impact(q, s, body, contact):
-    """Impact of corner s with the edge's friction and the contact's restitution (section
+def point_impact(q, s, mu_s, mu_k, body, contact):
+    """Impact of the base point s (a corner, s = +-1, or the middle of the base, s = 0:
+    ``motion.corner``) with the friction (mu_s, mu_k) and the contact's restitution (section
     2.2); updates q, returns the flag bits (``codes.SLIPPED``, ``CLAMPED``,
     ``IMPACT_PAINLEVE``)."""
-    mu_s, mu_k = contact.mu_edge_s, contact.mu_edge_k
     i2 = body.i2
     u, v, omega = q[IU], q[IV], q[IOMEGA]
     ke = kinetic_energy(q, i2)
@@ -92,3 +94,9 @@ def corner_impact(q, s, body, contact):
     rcx = corner(s, q[ITHETA], body.b, body.h)[0]
     apply_impulse(q, s, 0.0, -Vy / (1.0 + rcx * rcx / i2), body)
     return flags | CLAMPED
+
+
+@jit
+def corner_impact(q, s, body, contact):
+    """Impact of corner s with the edge's friction (``point_impact``)."""
+    return point_impact(q, s, contact.mu_edge_s, contact.mu_edge_k, body, contact)

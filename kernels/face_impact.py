@@ -1,18 +1,22 @@
-"""Impact with the face flat, theta = 0: the flat landing after a translation jump and the
-rocking impact of the other corner (PHYSICS.md 2.1-2.3).
+"""Impact with the face flat, theta = 0: the landing after a translation jump and the
+rocking impact of the other corner (PHYSICS.md 2.1-2.3, docs/landing.md).
 
 Both corners get Newton's normal target -e_y V_n- (0 for a corner not approaching); the
 total tangential impulse acts at the height -h below G.  The two-contact solution is taken
 when both normal impulses are >= 0 (a flat landing, or a squat block whose old pivot cannot
 lift); otherwise only the corner striking harder takes the impulse with the edge friction
 (Housner's case, ``corner_impact``), and if that drives the other corner into the floor,
-that one is struck in turn: a sequence of single-corner impacts, each dissipative.
+that one is struck in turn: a sequence of single-corner impacts, each dissipative.  A
+landing after a translation jump takes the scene's law (``landing_impact``): this
+two-contact impulse (flat), one contact at the middle of the base (face_friction), or the
+leading corner first (corner).
 """
 import math
 
 from ._jit import jit
-from .codes import CLAMPED, IMPACT_PAINLEVE, IOMEGA, IU, IV, SLIPPED
-from .corner_impact import corner_impact, restore_velocities
+from .codes import (CLAMPED, IMPACT_PAINLEVE, IOMEGA, IU, IV, LANDING_CORNER,
+                    LANDING_FACE_FRICTION, SLIPPED)
+from .corner_impact import corner_impact, point_impact, restore_velocities
 from .motion import corner_velocity, kinetic_energy
 from .tolerances import APPROACH_ROUNDOFF, ENERGY_ROUNDOFF, IMPULSE_ROUNDOFF, V_ZERO
 
@@ -92,16 +96,54 @@ def face_impact(q, body, contact):
         if kinetic_energy(q, i2) <= ke * (1.0 + ENERGY_ROUNDOFF):
             return flags
         restore_velocities(q, u, v, omega)
-    # Only the corner striking harder takes the impulse, then the other in turn while the
-    # last one drives it into the floor.
-    s = -1.0 if v - omega * b < v + omega * b else 1.0
+    # Only the corner striking harder takes the impulse, then the other in turn.
+    return corner_sequence(q, -1.0 if v - omega * b < v + omega * b else 1.0, body, contact)
+
+
+@jit
+def approaches(q, s, b, h):
+    """Whether corner s moves into the floor (beyond round-off)."""
+    return corner_velocity(q, s, b, h)[1] < -APPROACH_ROUNDOFF * (abs(q[IV])
+                                                                  + b * abs(q[IOMEGA]))
+
+
+@jit
+def corner_sequence(q, s, body, contact):
+    """Single-corner impacts (PHYSICS 2.2) at theta = 0: corner s, then the other in turn
+    while the last one drives it into the floor; updates q, returns the flag bits
+    (``CLAMPED`` too if ``SEQUENTIAL_IMPACTS`` did not end it)."""
     flags = 0
     for _ in range(SEQUENTIAL_IMPACTS):
         flags |= corner_impact(q, s, body, contact)
         if flags & IMPACT_PAINLEVE:
             return flags
         s = -s
-        if corner_velocity(q, s, b, h)[1] >= -APPROACH_ROUNDOFF * (abs(q[IV])
-                                                                 + b * abs(q[IOMEGA])):
+        if not approaches(q, s, body.b, body.h):
             return flags
     return flags | CLAMPED
+
+
+@jit
+def landing_impact(q, body, contact):
+    """Landing after a translation jump (theta = omega = 0) by the contact's law
+    (``codes.LANDING_*``); updates q, returns the flag bits.
+
+    flat: ``face_impact``, the two-contact impulse (PHYSICS 2.3).  face_friction: the
+    two-coefficient impact (2.2) of the middle of the base with the surface's friction, whose
+    tangential impulse, h below G, turns the body (docs/landing.md (L3)); a corner that
+    rotation drives into the floor then strikes, and the other in turn.  corner: the leading
+    corner (on the side u points to) strikes first, then the other in turn; without a
+    horizontal velocity no corner leads and the landing is flat.
+    """
+    b, h = body.b, body.h
+    if contact.landing == LANDING_FACE_FRICTION:
+        # s = 0: the middle of the base; W_nn = 1 there, so never a Painleve case
+        flags = point_impact(q, 0.0, contact.mu_s, contact.mu_k, body, contact)
+        s = -1.0 if corner_velocity(q, -1.0, b, h)[1] < corner_velocity(q, 1.0, b, h)[1] \
+            else 1.0
+        if approaches(q, s, b, h):
+            flags |= corner_sequence(q, s, body, contact)
+        return flags
+    if contact.landing == LANDING_CORNER and q[IU] != 0.0:
+        return corner_sequence(q, math.copysign(1.0, q[IU]), body, contact)
+    return face_impact(q, body, contact)

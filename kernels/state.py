@@ -22,7 +22,7 @@ from numba.extending import intrinsic
 from numba.np.arrayobj import make_array
 
 from ._jit import DISABLED, jit
-from .codes import N_CTX, N_MODES, N_STATE
+from .codes import LANDING_FLAT, N_CTX, N_MODES, N_STATE
 from .extremes import N_EXTREMES
 from .integrate import DENSE_DEGREE
 from .tableaus import MAX_STAGES
@@ -31,9 +31,11 @@ from .transitions import flat_sliding_friction
 Body = namedtuple("Body", "b h i2")
 Body.__doc__ = "Half-breadth b and half-height h [m], squared radius of gyration i2 [m^2]."
 
-Contact = namedtuple("Contact", "mu_s mu_k mu_edge_s mu_edge_k e_x e_y")
+Contact = namedtuple("Contact", "mu_s mu_k mu_edge_s mu_edge_k e_x e_y landing",
+                     defaults=(float(LANDING_FLAT),))
 Contact.__doc__ = """Friction of the surface (mu_s, mu_k: face contact) and of the edge
-(mu_edge_s, mu_edge_k: one corner), tangential and normal restitution e_x, e_y."""
+(mu_edge_s, mu_edge_k: one corner), tangential and normal restitution e_x, e_y, and the law
+of a landing after a translation jump (a ``codes.LANDING_*`` code, default flat)."""
 
 Scene = namedtuple("Scene", "body contact floor solver initial")
 Scene.__doc__ = """``Body`` and ``Contact`` (derived from the row), and the row's own records of
@@ -79,7 +81,7 @@ def scene_of(row):
     h = 0.5 * row.body.H
     c = row.contact
     contact = Contact(c.mu_s, flat_sliding_friction(c.mu_k, c.mu_edge_k, b, h), c.mu_edge_s,
-                      c.mu_edge_k, c.e_x, c.e_y)
+                      c.mu_edge_k, c.e_x, c.e_y, c.landing)
     return Scene(Body(b, h, row.body.i2), contact, row.floor, row.solver, row.initial)
 
 

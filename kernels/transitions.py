@@ -14,7 +14,8 @@ slide_rotation     lift-off (N = 0)  -                            rotation jump
                    slip (|F| = mu N) -                            slide rotation
                    slip ends (V = 0) corner stops                 ``select_corner``
                    overturn, D <= 0  -                            end (overturned, Painleve)
-translation jump   landing           ``face_impact`` (2.3)        ``select_face``
+translation jump   landing           ``landing_impact`` (2.3,     ``select_face``
+                                     docs/landing.md)
 rotation jump      corner gap = 0    ``corner_impact`` (2.2)      bounce (Zeno: ``zeno``)
                                                                   or ``select_corner``
                    overturn          -                            end (overturned)
@@ -33,7 +34,7 @@ from .codes import (CTX_S, CTX_SIGMA, IMPACT_PAINLEVE, IOMEGA, ITHETA, IU, IV, I
 from .corner_impact import corner_impact
 from .events import (EV_GAP_L, EV_JUMP_OVERTURN, EV_LIFTOFF, EV_OVERTURN, EV_PAINLEVE,
                      EV_SLIP, EV_STOP)
-from .face_impact import face_impact
+from .face_impact import face_impact, landing_impact
 from .ground import G, ground
 from .motion import corner, corner_velocity, rotation_dynamics, slide_rotation_dynamics
 from .tolerances import ROCKING_ROUNDOFF
@@ -216,9 +217,13 @@ def initial_mode(q, scene, rec):
 
 @jit
 def _face_landing(mode, s, sigma, q, a_x, g_e, scene):
-    """Impact with the face flat (theta = 0) and the mode after it."""
+    """Impact with the face flat (theta = 0) and the mode after it: a landing after a
+    translation jump by the scene's landing law, a rocking impact by ``face_impact``."""
     q[IY] = scene.body.h
-    flags = face_impact(q, scene.body, scene.contact)
+    if mode == TRANSLATION_JUMP:
+        flags = landing_impact(q, scene.body, scene.contact)
+    else:
+        flags = face_impact(q, scene.body, scene.contact)
     if flags & IMPACT_PAINLEVE:
         return mode, s, sigma, PAINLEVE, flags
     m, s2, sg2 = select_face(q, a_x, g_e, scene.body, scene.contact, scene.solver)
@@ -262,7 +267,7 @@ def on_event(k, mode, t, q, ctx, scene, rec):
             return m, s2, sg2, OK, NOT_AN_IMPACT
         q[IV] = 0.0                                     # EV_FREE_FALL: g_e reached 0
         return TRANSLATION_JUMP, 0.0, 0.0, OK, NOT_AN_IMPACT
-    if mode == TRANSLATION_JUMP:                        # flat landing
+    if mode == TRANSLATION_JUMP:                        # landing
         return _face_landing(mode, s, sigma, q, a_x, g_e, scene)
     # rotation jump
     if k == EV_JUMP_OVERTURN:

@@ -25,6 +25,7 @@ from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .paper import classify
 from .plots.histories import figure_history
+from .plots.landing import figure_landing
 from .plots.limits import figure_limits
 from .plots.map import figure_boundary, figure_map
 from .plots.records import figure_record_map, figure_summary
@@ -53,6 +54,7 @@ FIGURES = {
     "fig20": figure_record_map,  # ... under El Centro EW (+UD), in place of Miyagi-ken-oki
     "fig21": figure_summary,  # every body of every record on (PGA/a_o, PGV/v_o): A, B, C
     "spectrum": figure_spectrum,  # rocking spectrum: peak |theta|/alpha against p, per alpha
+    "landing": figure_landing,  # after a translation jump: slides, tilts, overturns (Fig. 5)
     # overturning of frequency sweeps in the normalized plane (v/v_H, a/((B/H) g))
     "fig08": partial(figure_plane, label="Fig. 8"),
     "fig09": partial(figure_plane, label="Fig. 9"),

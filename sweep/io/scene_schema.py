@@ -21,6 +21,7 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fi
                       field_validator, model_validator)
 
 from kernels.api import DEFAULTS, scene_row
+from kernels.codes import LANDING_NAMES
 
 from . import records, units
 from .units import Quantity
@@ -135,6 +136,11 @@ class Contact(StrictModel):
         None, description="tangential restitution: -1 keeps, 0 stops the tangential velocity")
     e_y: Optional[Annotated[Real, Field(ge=0, le=1)]] = Field(
         None, description="normal restitution (0 with enough friction: Housner's impact)")
+    landing: Literal[LANDING_NAMES] = Field(
+        DEFAULTS["contact"]["landing"], description="law of a landing after a translation "
+        "jump: flat (two-contact impulse), face_friction (one contact at the middle of the "
+        "base: its friction turns the body), corner (the leading corner first); "
+        "docs/landing.md")
 
 
 class _Ground(StrictModel):

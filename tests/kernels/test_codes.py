@@ -9,6 +9,7 @@ ROW_INDEX = {
     ("contact", "mu_s"): codes.P_MU_S, ("contact", "mu_k"): codes.P_MU_K,
     ("contact", "mu_edge_s"): codes.P_MU_EDGE_S, ("contact", "mu_edge_k"): codes.P_MU_EDGE_K,
     ("contact", "e_x"): codes.P_E_X, ("contact", "e_y"): codes.P_E_Y,
+    ("contact", "landing"): codes.P_LANDING,
     ("initial", "theta"): codes.P_THETA0, ("initial", "omega"): codes.P_OMEGA0,
     ("initial", "u"): codes.P_U0, ("initial", "v"): codes.P_V0,
     ("initial", "lift"): codes.P_LIFT0,
