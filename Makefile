@@ -26,7 +26,7 @@ run: install
 
 scenes: install
 	mkdir -p figures/scenes
-	for f in studies/fig0[345]*.yaml; do \
+	for f in studies/fig0[345][a-g]_*.yaml; do \
 	  $(PY) -m sweep.scene $$f --plot figures/scenes/$$(basename $$f .yaml).png || exit 1; done
 
 test: install

@@ -3,7 +3,7 @@
     mpiexec -n 2 python -m sweep.figures [-o FIGURES]
 
 The ranks stay together from the first figure to the last, so start-up, imports and the
-kernel load are paid once: they draw the scenes of Figs 3-5 (``studies/fig0[345]*.yaml``,
+kernel load are paid once: they draw the scenes of Figs 3-5 (``studies/fig0[345][a-g]_*.yaml``,
 into ``FIGURES/scenes``), run every study of ``PLAN`` one after the other (``sweep.run``, so
 each dataset is the one ``python -m sweep.run STUDY --force`` writes into ``results/``),
 classify the overturnings of the sweeps of Fig. 11 once for Figs 11-16
@@ -23,7 +23,7 @@ from .runner import mpi
 from .runner.progress import emit, format_seconds
 
 STUDIES = Path("studies")
-SCENES = "fig0[345]*.yaml"  # the scenes of Figs 3-5
+SCENES = "fig0[345][a-g]_*.yaml"  # the scenes of Figs 3-5
 KINDS = ("acceleration", "velocity", "displacement")  # the sweeps of Figs 8-10
 # output name -> (figure of sweep.plot, the studies whose datasets it draws), in drawing order
 PLAN = {
