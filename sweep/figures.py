@@ -45,6 +45,8 @@ PLAN = {
     "fig20": ("fig20", ("fig20_elcentro_ew",)),
     "fig21": ("fig21", ("fig21_summary",)),
     "rocking_spectrum": ("spectrum", ("rocking_spectrum_elcentro",)),
+    "fig05_landing_map": ("landing", ("fig05_landing_map",)),
+    "fig05_landing_speeds": ("landing", ("fig05_landing_speeds",)),
 }
 # Fragility figures (python -m sweep.fragility): output name -> (study, its arguments)
 FRAGILITY = {
