@@ -28,6 +28,7 @@ from .plots.histories import figure_history
 from .plots.landing import figure_landing
 from .plots.limits import figure_limits
 from .plots.map import figure_boundary, figure_map
+from .plots.rates import figure_rates
 from .plots.records import figure_record_map, figure_summary
 from .plots.spectra import figure_spectrum
 from .plots.style import save_figure
@@ -63,9 +64,10 @@ FIGURES = {
     # histories before overturning, by kind of rocking (sweep.paper.classify)
     **{name: partial(histories, figure=name)
        for name in ("fig12", "fig13", "fig14", "fig15", "fig16")},
+    "rates": figure_rates,  # overturning against the sweep rate, fitted to its slow limit
 }
 WITHOUT_DATASET = {"fig17"}  # drawn from sweep.paper.criteria alone
-SEVERAL = {f"fig{k:02d}" for k in range(8, 17)}  # drawn from a list of sweep datasets
+SEVERAL = {*(f"fig{k:02d}" for k in range(8, 17)), "rates"}  # from a list of sweep datasets
 CLASSIFIED = {f"fig{k}" for k in range(11, 17)}  # take ``known=`` classifications (Figs 11-16)
 REFINE_FIGURES = {"map", "boundary"}  # the figures that draw a refine study's boundaries
 
