@@ -184,8 +184,10 @@ def fit_slow_limit(T, y, sigma=None, confidence=CONFIDENCE):
 
 def level_fits(summary, series=0):
     """{level: SlowLimit} of every level overturned by every member at every rate, fitted to
-    the ensemble means with their standard errors."""
+    the ensemble means with their standard errors (none with fewer than 4 rates)."""
     fits = {}
+    if summary.octave_times.size < 4:
+        return fits
     for i, level in enumerate(summary.levels):
         mean, sem = summary.mean[series, i], summary.sem[series, i]
         complete = np.all(summary.overturned[series, i] == summary.count[series, i])
