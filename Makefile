@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: install run scenes test test-nojit validate bench figures clean
+.PHONY: install run scenes test test-nojit validate bench figures rate-study clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
@@ -50,6 +50,16 @@ figures: install
 	$(PY) -m sweep.estimate studies/bodies_example.yaml | tee figures/bodies_example.txt
 	$(PY) -m sweep.estimate studies/tombstones_estimate.yaml -o figures/site_estimate.png \
 	  > figures/tombstones_estimate.txt
+
+# Sweep rate against curves a and c (docs/reproduction.md): 2,304 sweeps, ~1,300 s CPU,
+# ~15 min on 2 ranks; tables into figures/rate_study.md, figure figures/rate_study.png
+RATE_STUDIES := fig09_acceleration fig08_acceleration fig09_velocity fig08_velocity fig09_displacement
+rate-study: install
+	mkdir -p figures
+	for s in $(RATE_STUDIES); do \
+	  $(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.run studies/rate_study_$$s.yaml --force || exit 1; done
+	$(PY) -m sweep.paper.rates $(RATE_STUDIES:%=results/rate_study_%.nc) > figures/rate_study.md
+	$(PY) -m sweep.plot $(RATE_STUDIES:%=results/rate_study_%.nc) --figure rates -o figures/rate_study.png
 
 clean:
 	rm -rf out results figures

@@ -33,10 +33,10 @@ PLAN = {
        for s in ("variants_acceleration", "variants_velocity", "bodies_acceleration",
                  "bodies_velocity", "rate_acceleration", "rate_velocity")},
     "fig11": ("fig11", (*(f"fig{n}_{kind}" for n in ("08", "09") for kind in KINDS),
-                        "fig10_acceleration")),
+                        "fig10_acceleration", "curve_b_points")),
     "fig12": ("fig12", ("fig08_acceleration", *(f"fig09_{kind}" for kind in KINDS))),
     "fig13": ("fig13", ("fig09_acceleration",)),
-    "fig14": ("fig14", ("fig08_acceleration", "fig09_acceleration")),
+    "fig14": ("fig14", ("fig08_acceleration", "fig09_acceleration", "curve_b_points")),
     "fig15": ("fig15", ("fig09_velocity",)),
     "fig16": ("fig16", ("fig09_displacement",)),
     "fig17": ("fig17", ()),
@@ -45,6 +45,8 @@ PLAN = {
     "fig20": ("fig20", ("fig20_elcentro_ew",)),
     "fig21": ("fig21", ("fig21_summary",)),
     "rocking_spectrum": ("spectrum", ("rocking_spectrum_elcentro",)),
+    "rate_study_short": ("rates", ("rate_study_short_acceleration",
+                                   "rate_study_short_velocity")),
     "fig05_landing_map": ("landing", ("fig05_landing_map",)),
     "fig05_landing_speeds": ("landing", ("fig05_landing_speeds",)),
 }
@@ -93,8 +95,9 @@ class _Stages:
         self.last = now
 
     def total(self, output):
-        self.done(f"wrote {len(PLAN)} figures into {output} (all stages: "
-                  f"{format_seconds(time.perf_counter() - self.start)})")
+        if self.comm.Get_rank() == 0:
+            emit(f"sweep.figures: wrote {len(PLAN) + len(FRAGILITY)} figures into {output} in "
+                 f"{format_seconds(time.perf_counter() - self.start)}", sys.stderr)
 
 
 def draw_scenes(comm, output):
@@ -219,11 +222,13 @@ def main(argv=None):
         draw_figures(comm, datasets, known, output)
         for ds in datasets.values():
             ds.close()
+        mpi.barrier(comm)
+        stages.done(f"{len(PLAN)} figures drawn")
         status = draw_fragility(comm, output)
         if status:
             return status
-        stages.done(f"{len(FRAGILITY)} fragility figures drawn")
         mpi.barrier(comm)
+        stages.done(f"{len(FRAGILITY)} fragility figures drawn")
         stages.total(output)
     return 0
 

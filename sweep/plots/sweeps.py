@@ -11,6 +11,8 @@ displacement.  A figure takes the datasets of one or several sweep studies
 (``sweep.paper.classify.classify_dataset``).  An overturning after the excitation stopped is
 not a result of the sweep: it is left out and counted.
 """
+import textwrap
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
@@ -184,7 +186,8 @@ def figure_boundaries(data, rockings, label=None):
     handles += draw_criteria(ax)
     sources = "; ".join(sorted({f"{c.body}{f', tilt {c.tilt:.2g} α' if c.tilt else ''}"
                                 for c in cells_list}))
-    handles.append(Line2D([], [], ls="none", label=f"sweeps of: {sources}"))
+    handles.append(Line2D([], [], ls="none",
+                          label=textwrap.fill(f"sweeps of: {sources}", 110)))
     fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=8,
                frameon=False)
     ax.set_title(f"{label + ': ' if label else ''}boundaries of overturning, by the rocking "

@@ -12,7 +12,8 @@ def test_it_runs_every_sweep_and_record_study_once():
     wanted = {p.stem for pattern in ("fig08_*", "fig09_*", "fig10_*") for p in
               STUDIES.glob(f"{pattern}.yaml")}
     wanted |= {"fig18_elcentro_ns", "fig19_taft_ew", "fig20_elcentro_ew", "fig21_summary",
-               "rocking_spectrum_elcentro", "fig05_landing_map", "fig05_landing_speeds"}
+               "rocking_spectrum_elcentro", "fig05_landing_map", "fig05_landing_speeds",
+               "curve_b_points", "rate_study_short_acceleration", "rate_study_short_velocity"}
     wanted |= {p.stem for p in STUDIES.glob("fragility_*.yaml")}
     names = figures.studies()
     assert len(names) == len(set(names)) and set(names) == wanted
