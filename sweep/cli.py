@@ -106,3 +106,24 @@ def print_json(value, one_line_per_key=False):
         comma = "," if k < last else ""
         print(f" {json.dumps(key)}: {json.dumps(item, allow_nan=False)}{comma}")
     print("}")
+
+
+def report_command(prog, description, report):
+    """A command ``main(argv=None)`` that prints ``report(ds)`` for each dataset it is given
+    (``python -m sweep.paper.rates RESULT.nc ...``)."""
+    import argparse
+
+    @command
+    def main(argv=None):
+        parser = argparse.ArgumentParser(prog=prog, description=description)
+        parser.add_argument("result", nargs="+", help="dataset of a study (netCDF)")
+        args = parser.parse_args(argv)
+
+        import xarray as xr
+
+        for path in args.result:
+            with xr.open_dataset(path) as ds:
+                print(report(ds))
+        return 0
+    return main
+

@@ -10,14 +10,13 @@ ensemble, and ``fit_slow_limit`` extrapolates it to T -> infinity with
 y(T) = y_inf + c (T/T_0)^-k (``scipy.optimize.curve_fit``, its covariance for the interval).
 ``python -m sweep.paper.rates RESULT.nc ...`` prints the tables of ``docs/reproduction.md``.
 """
-import argparse
 import sys
 from collections import namedtuple
 
 import numpy as np
 from scipy import optimize, stats
 
-from ..cli import command
+from ..cli import report_command
 from ..io import units
 from . import classify, plane
 
@@ -261,19 +260,10 @@ def report(ds):
     return "\n".join(lines)
 
 
-@command
-def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m sweep.paper.rates",
-                                     description="Tables and slow-limit fits of rate studies.")
-    parser.add_argument("result", nargs="+", help="dataset of a rate study (netCDF)")
-    args = parser.parse_args(argv)
-
-    import xarray as xr
-
-    for path in args.result:
-        with xr.open_dataset(path) as ds:
-            print(report(ds))
-    return 0
+main = report_command(
+    "python -m sweep.paper.rates",
+    "Tables and slow-limit fits of rate studies.",
+    report)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,6 @@ classifies a cell again with the classifier's window, tolerance and sampling cha
 integrator's tolerance changed and the amplitude changed by a relative 1e-6.
 ``python -m sweep.paper.subharmonic RESULT.nc ...`` prints both as markdown tables.
 """
-import argparse
 import contextlib
 import sys
 from collections import namedtuple
@@ -17,7 +16,7 @@ import numpy as np
 
 from kernels import run_scene
 
-from ..cli import command
+from ..cli import report_command
 from .. import cf
 from ..runner import grid
 from . import classify
@@ -145,20 +144,10 @@ def report(ds, rockings=None):
     return "\n".join(lines + [""])
 
 
-@command
-def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m sweep.paper.subharmonic",
-                                     description="Overturnings of sweep studies by the rocking "
-                                                 "before them, counted per condition.")
-    parser.add_argument("result", nargs="+", help="dataset of a sweep study (netCDF)")
-    args = parser.parse_args(argv)
-
-    import xarray as xr
-
-    for path in args.result:
-        with xr.open_dataset(path) as ds:
-            print(report(ds))
-    return 0
+main = report_command(
+    "python -m sweep.paper.subharmonic",
+    "Overturnings of sweep studies by the rocking before them, counted per condition.",
+    report)
 
 
 if __name__ == "__main__":
