@@ -105,14 +105,20 @@ def measure(quick):
     return results
 
 
+def _dataset_name(ds, axis):
+    """The dataset's name of a study axis (a dotted axis is named by its last key)."""
+    return next(name for name, c in ds.coords.items() if c.attrs.get("study_axis") == axis)
+
+
 def _compare(r):
     """Table rows of one map and the counts of equal and consistent brackets."""
     m, amplitudes = r.map, r.dense["amplitude"].values
     rows, same, consistent = [], 0, 0
-    for value in r.refined[m.line].values:
-        row = r.dense["overturned"].sel({m.line: value}).values
+    line_dim = _dataset_name(r.refined, m.line)
+    for value in r.refined[line_dim].values:
+        row = r.dense["overturned"].sel({line_dim: value}).values
         d_low, d_high = _dense_bracket(amplitudes, row)
-        line = r.refined.sel({m.line: value})
+        line = r.refined.sel({line_dim: value})
         low, high = float(line["boundary_lower"]), float(line["boundary_upper"])
         equal = d_low == low and d_high == high
         # the refined ends are dense cells: standing at the lower one, overturned at the upper
