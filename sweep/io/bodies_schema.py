@@ -54,7 +54,8 @@ from pydantic import (Field, StrictBool, StrictFloat, StrictInt, StrictStr, Vali
                       ValidationInfo, field_validator, model_validator)
 
 from . import records
-from .problems import MISSING, FieldError, FileProblems, Problem, validation_problems
+from .plausibility import body_doubts
+from .problems import MISSING, FieldError, FileProblems, Problem, validation_problems, warn
 from .scene_schema import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
                            quantity)
 from .yamlio import read_yaml, top_level_problems
@@ -458,6 +459,10 @@ def load_survey(source):
         problems = validation_problems(err, _FIELD_NAMES) + problems
     if problems:
         raise FileProblems(problems, path)
+    entries = ([("bodies", checked.bodies)] if checked.sites is None else
+               [(f"sites[{i}].bodies", s.bodies) for i, s in enumerate(checked.sites)])
+    warn([doubt for where, bodies in entries for j, entry in enumerate(bodies)
+          for doubt in body_doubts(entry, f"{where}[{j}]")])
     if checked.sites is None:
         sites = (Site(name=checked.site, bodies=_bodies(checked.bodies)),)
     else:

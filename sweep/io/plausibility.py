@@ -71,6 +71,18 @@ def _quantity_doubt(path, q):
     return None
 
 
+def body_doubts(entry, path):
+    """Doubts of a body's bare sizes (``B``, ``H``, ``i_g`` of a bodies file's entry), at
+    ``path`` (``sites[0].bodies[2]``)."""
+    doubts = []
+    for key in _SIZES:
+        q = getattr(entry, key)
+        doubt = None if q is None else _quantity_doubt(f"body.{key}", q)
+        if doubt is not None:
+            doubts.append(doubt._replace(path=f"{path}.{key}"))
+    return doubts
+
+
 def _no_sliding(mu):
     """True for 10, 100, 1000, ...: a coefficient meant to keep the body from sliding."""
     return mu >= 10.0 and mu == 10.0 ** round(math.log10(mu))

@@ -326,3 +326,17 @@ def test_header_units_in_a_scene(tmp_path):
     assert "a PEER .AT2 file is in g, not gal (units: gal)" in str(info.value)
     assert resolve_scene(load_scene(_record(path="x.AT2", units="g"), base_dir=tmp_path))[
         "excitation"]["horizontal"]["source"].pga == pytest.approx(0.3 * G, rel=1e-15)
+
+
+def test_bodies_files_warn_of_bare_sizes_at_their_place():
+    """A bodies file's B: 30 is a 30 m body too: warned of at sites[i].bodies[j].B."""
+    from sweep.io.bodies_schema import load_survey
+    survey = {"sites": [{"name": "a", "bodies": [
+        {"name": "s1", "B": "30 cm", "H": 0.9, "overturned": True},
+        {"name": "s2", "B": 30, "H": "90 cm", "overturned": False}]}]}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        load_survey(survey)
+    said = [w.message.problem for w in caught if w.category is InputWarning]
+    assert [p.path for p in said] == ["sites[0].bodies[1].B"]
+    assert "did you mean 30 cm" in said[0].message
