@@ -25,7 +25,8 @@ from . import grid
 
 _ROOT = Path(__file__).resolve().parents[2]
 # Source files whose edit can change what a cell's part holds.
-PROGRAM_SOURCES = ("kernels/*.py", "sweep/io/*.py", "sweep/groundmotion/*.py",
+PROGRAM_SOURCES = ("kernels/*.py", "sweep/io/*.py", "sweep/io/formats/*.py",
+                   "sweep/groundmotion/*.py",
                    "sweep/runner/grid.py",
                    "sweep/runner/cells.py", "sweep/paper/criteria.py", "sweep/cf.py")
 _RECORD_KEYS = ("name", "path")
