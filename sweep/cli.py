@@ -127,3 +127,22 @@ def report_command(prog, description, report):
         return 0
     return main
 
+
+def checked_type(convert, ok, what):
+    """An ``argparse`` type: ``convert(text)``, refused with "must be <what>" when it fails or
+    the value is not ``ok``."""
+    import argparse
+
+    def parse(text):
+        try:
+            value = convert(text)
+        except ValueError:
+            value = None
+        if value is None or not ok(value):
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text!r}")
+        return value
+    return parse
+
+
+positive_int = checked_type(int, lambda v: v >= 1, "a whole number >= 1")
+

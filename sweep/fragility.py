@@ -13,7 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .cli import EPILOG, command, print_json
+from .cli import EPILOG, checked_type, command, positive_int, print_json
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
@@ -26,18 +26,7 @@ NO_LEVELS = "none"  # --levels none: a cloud of cells, binned in ln IM
 KINDS = ("curves", "map")
 
 
-def _confidence(text):
-    value = float(text)
-    if not 0.0 < value < 1.0:
-        raise argparse.ArgumentTypeError(f"must lie strictly between 0 and 1, got {text}")
-    return value
-
-
-def _positive(text):
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be a positive whole number, got {text}")
-    return value
+_confidence = checked_type(float, lambda v: 0.0 < v < 1.0, "strictly between 0 and 1")
 
 
 def _parser():
@@ -56,7 +45,7 @@ def _parser():
                         help="dimension along which the members are scaled (default: pga, "
                              f"pgv, scale or amplitude if present); '{NO_LEVELS}': each cell "
                              "at its own IM, probabilities in bins of ln IM")
-    parser.add_argument("--bins", type=_positive, default=DEFAULT_BINS,
+    parser.add_argument("--bins", type=positive_int, default=DEFAULT_BINS,
                         help=f"bins in ln IM without levels (default {DEFAULT_BINS})")
     parser.add_argument("--confidence", type=_confidence, default=0.95,
                         help="coverage of every interval (default 0.95)")
@@ -65,7 +54,7 @@ def _parser():
     parser.add_argument("--fit-interval", choices=INTERVALS, default="bootstrap",
                         help="intervals of theta and beta: bootstrap over the members (BCa, "
                              "default) or the delta method")
-    parser.add_argument("--replicates", type=_positive, default=DEFAULT_REPLICATES,
+    parser.add_argument("--replicates", type=positive_int, default=DEFAULT_REPLICATES,
                         help=f"bootstrap replicates (default {DEFAULT_REPLICATES})")
     parser.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (default 0)")
     parser.add_argument("--json", action="store_true", help="print every group as JSON (SI)")

@@ -10,10 +10,11 @@ The command parses its arguments, takes the communicator (``runner.mpi``) and ha
 ``runner.launch``, which plans, deals, computes and merges.
 """
 import argparse
+import math
 import sys
 import warnings
 
-from .cli import EPILOG, command
+from .cli import EPILOG, checked_type, command, positive_int
 from .io.problems import EXIT_BAD_INPUT
 
 EXIT_FAILED = 1
@@ -22,29 +23,9 @@ from .runner import grid, mpi
 from .runner.cells import CELL_BUDGET
 
 
-def _positive(text):
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
-    return value
-
-
-def _seconds(text):
-    """A duration in seconds, >= 0 (0: no limit)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number of seconds, got {text!r}") from None
-    if not value >= 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
-    return value
-
-
-def _cells(text):
-    value = int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0 (0: no limit), got {value}")
-    return value
+# seconds of a budget or a time-out: 0 for no limit
+_seconds = checked_type(float, lambda v: 0 <= v < math.inf, "a finite number of seconds >= 0")
+_cells = checked_type(int, lambda v: v >= 0, "a whole number >= 0 (0: no limit)")
 
 
 def parse_args(argv=None):
@@ -59,7 +40,7 @@ def parse_args(argv=None):
     parser.add_argument("--force", action="store_true",
                         help="overwrite an existing result (and discard stale part files)")
     parser.add_argument("--quiet", action="store_true", help="no progress and no summary")
-    parser.add_argument("--chunk-size", type=_positive, default=None, metavar="N",
+    parser.add_argument("--chunk-size", type=positive_int, default=None, metavar="N",
                         help="cells per chunk (part file); default: about 16 chunks per rank, "
                              f"at most {grid.MAX_CHUNK} cells")
     parser.add_argument("--seed", type=int, default=grid.DEFAULT_SEED, metavar="N",
