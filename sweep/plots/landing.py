@@ -24,6 +24,7 @@ from kernels.api import run_scene
 from ..paper import classify
 from ..paper.criteria import G
 from .map import panel_title
+from .style import axis_label, study_axis
 
 FAILED, SLIDES, TILTS_FORWARD, TILTS_BACK, OVERTURNS_FORWARD, OVERTURNS_BACK = range(-1, 5)
 CLASSES = {  # code -> (flag meaning, legend text, colour)
@@ -97,32 +98,20 @@ def landing_classes(ds):
                                "flag_meanings": " ".join(CLASSES[c][0] for c in codes)})
 
 
-def _study_axis(ds, dim):
-    """The study's name of a dimension (``initial.x_dot`` for ``x_dot``)."""
-    return ds[dim].attrs.get("study_axis", dim)
-
-
-def _label(da):
-    """Axis label ``long name [units]`` (no brackets for a dimensionless ratio)."""
-    units = da.attrs.get("units", "")
-    name = da.attrs.get("long_name", da.name)
-    return name if units in ("", "1") else f"{name} [{units}]"
-
-
 def _stretch_e_x(ax, ds, x, y):
     """Draw an e_x axis of ``ax`` on the scale log(1 + e_x + ``E_X_OFFSET``)."""
     scale = (lambda e: np.log(np.maximum(1.0 + e + E_X_OFFSET, 1e-300)),
              lambda s: np.exp(s) - 1.0 - E_X_OFFSET)
     for dim, set_scale, set_ticks in ((x, ax.set_xscale, ax.set_xticks),
                                       (y, ax.set_yscale, ax.set_yticks)):
-        if _study_axis(ds, dim) == "e_x":
+        if study_axis(ds[dim]) == "e_x":
             set_scale("function", functions=scale)
             set_ticks(E_X_TICKS, [f"{t:g}" for t in E_X_TICKS])
 
 
 def _panel_name(ds, sel):
     """'5b' when the panel's e_x and e_y are those of one of our Fig. 5 panels, else ''."""
-    values = {_study_axis(ds, d): float(ds[d].values[i]) for d, i in sel.items()}
+    values = {study_axis(ds[d]): float(ds[d].values[i]) for d, i in sel.items()}
     e = (values.get("e_x"), values.get("e_y"))
     return next((name for name, pair in PAPER_PANELS.items()
                  if None not in e and np.allclose(e, pair)), "")
@@ -130,7 +119,7 @@ def _panel_name(ds, sel):
 
 def _mark_paper(ax, ds, x, y):
     """Our Fig. 5 panels on an (e_x, e_y) map; Fig. 5's landing on an (x_dot, y_dot) map."""
-    axes = (_study_axis(ds, x), _study_axis(ds, y))
+    axes = (study_axis(ds[x]), study_axis(ds[y]))
     if axes == ("e_x", "e_y"):
         points = PAPER_PANELS
     elif axes == ("initial.x_dot", "initial.y_dot"):
@@ -189,8 +178,8 @@ def figure_landing(ds, x=None, y=None):
                       shading="nearest")
         _stretch_e_x(ax, ds, x, y)
         _mark_paper(ax, ds, x, y)
-        ax.set_xlabel(_label(ds[x]))
-        ax.set_ylabel(_label(ds[y]))
+        ax.set_xlabel(axis_label(ds[x]))
+        ax.set_ylabel(axis_label(ds[y]))
         name = _panel_name(ds, sel)
         title = panel_title(ds, sel, x, y) if sel else ""
         ax.set_title(f"{title} (our {name})" if name else title, fontsize=9)

@@ -26,29 +26,11 @@ from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
 from ..io import units
 from ..runner.verdict import length_text
-from .style import OUTCOME_COLOURS, cell_edges, outcome_colours
+from .style import (OUTCOME_COLOURS, RELATIVE_LABELS, axis_label, cell_edges, outcome_colours,
+                    study_axis)
 
 MAX_PANELS = 6  # more combinations of the other axes than this: the first ones are drawn
 BODY_AXES = ("B", "H", "b_over_h", "size", "body.B", "body.H")  # study axes that change the body
-
-
-# short labels of axes in the paper's body-relative units
-RELATIVE_LABELS = {"west": "{} / (B/H) g", "v_H": "{} / v_H", "alpha": "{} / α"}
-
-
-def _label(da):
-    """Axis label ``long name [units]`` (no brackets for a dimensionless ratio)."""
-    unit = da.attrs.get("study_unit")
-    if unit in RELATIVE_LABELS:
-        return RELATIVE_LABELS[unit].format(da.name)
-    name = da.attrs.get("long_name", da.name)
-    units = da.attrs.get("units", "")
-    return name if units in ("", "1") else f"{name} [{units}]"
-
-
-def _study_axis(coord):
-    """The study's name of a coordinate (``study_axis``; its own name in older datasets)."""
-    return coord.attrs.get("study_axis", coord.name)
 
 
 def _value_text(coord, value):
@@ -93,10 +75,10 @@ def panel_title(ds, sel, x, y):
     along = [ds[c] for c in ds.coords if set(ds[c].dims) & {x, y}]
     coords = [(ds[c], int(sel[ds[c].dims[0]])) for c in ds.coords
               if len(ds[c].dims) == 1 and ds[c].dims[0] in sel]
-    texts = [_value_text(c, c.values[i]) for c, i in coords if _study_axis(c) not in BODY_AXES]
-    if not any(_study_axis(c) in BODY_AXES for c in along):
-        body = _body_text(ds, {_study_axis(c): float(c.values[i]) for c, i in coords
-                               if _study_axis(c) in BODY_AXES})
+    texts = [_value_text(c, c.values[i]) for c, i in coords if study_axis(c) not in BODY_AXES]
+    if not any(study_axis(c) in BODY_AXES for c in along):
+        body = _body_text(ds, {study_axis(c): float(c.values[i]) for c, i in coords
+                               if study_axis(c) in BODY_AXES})
         if body is not None:
             return "; ".join([body, *texts])
     return ", ".join(_value_text(c, c.values[i]) for c, i in coords)
@@ -150,8 +132,8 @@ def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
             axis.set_major_formatter(ScalarFormatter())
             axis.set_minor_formatter(NullFormatter())
             axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    ax.set_xlabel(_label(da[x]))
-    ax.set_ylabel(_label(da[y]))
+    ax.set_xlabel(axis_label(da[x]))
+    ax.set_ylabel(axis_label(da[y]))
     if da[y].attrs.get("study_unit") == "west":
         ax.axhline(1.0, color="k", ls="--", lw=1)
         ax.annotate("West: a = (B/H) g", (xs.max(), 1.0), xytext=(-2, 3), ha="right",
@@ -260,8 +242,8 @@ def draw_boundary(ax, ds, x):
             ax.plot(xs[flags == code], ds[where].values[flags == code], ls="", marker=marker,
                     color="k", markersize=7, zorder=3)
             handles.append(Line2D([], [], ls="", marker=marker, color="k", label=text))
-    ax.set_xlabel(_label(ds[x]))
-    ax.set_ylabel(f"overturning boundary: {_label(ds[y])}")
+    ax.set_xlabel(axis_label(ds[x]))
+    ax.set_ylabel(f"overturning boundary: {axis_label(ds[y])}")
     if ds[y].attrs.get("study_unit") == "west":
         ax.axhline(1.0, color="k", ls="--", lw=1)
         ax.annotate("West: a = (B/H) g", (xs.min(), 1.0), xytext=(2, -11),

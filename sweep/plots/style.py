@@ -15,6 +15,27 @@ OUTCOME_COLOURS = {-1: "#9e9e9e", 0: "#deebf7", 1: "#fdae6b", 2: "#cb181d"}
 GAL = 0.01  # 1 gal = 1 cm/s^2 in m/s^2
 
 
+# short labels of axes in the paper's body-relative units
+RELATIVE_LABELS = {"west": "{} / (B/H) g", "v_H": "{} / v_H", "alpha": "{} / α"}
+
+
+def axis_label(da):
+    """Axis label of a coordinate: ``long name [units]`` (no brackets for a dimensionless
+    ratio), or the body-relative form (``amplitude / (B/H) g``) for a level of ``west``,
+    ``v_H`` or ``alpha``."""
+    unit = da.attrs.get("study_unit")
+    if unit in RELATIVE_LABELS:
+        return RELATIVE_LABELS[unit].format(da.name)
+    name = da.attrs.get("long_name", da.name)
+    units = da.attrs.get("units", "")
+    return name if units in ("", "1") else f"{name} [{units}]"
+
+
+def study_axis(coord):
+    """The study's name of a coordinate (``study_axis``; its own name in older datasets)."""
+    return coord.attrs.get("study_axis", coord.name)
+
+
 def cell_edges(values, log):
     """Cell edges around centres (geometric midpoints on a log axis)."""
     v = np.asarray(values, dtype=float)
