@@ -7,6 +7,7 @@ from pathlib import Path
 from .cli import EPILOG, command, print_json
 from .io.files import output_problems
 from .io.problems import FileProblems, reported
+from .io.records import provenance_line
 from .runner.simulate import simulate, summary, to_json_dict
 
 
@@ -34,6 +35,7 @@ def main(argv=None):
         if outputs:  # before any work
             raise FileProblems(outputs, args.scene)
         result = simulate(args.scene, history=bool(files))
+    read = [provenance_line(component, said) for component, said in result.provenance.items()]
     if args.history:
         from .runner.store import write_netcdf
         write_netcdf(result.history, args.history)
@@ -44,13 +46,15 @@ def main(argv=None):
         from .plots.scene import animate_scene, draw_scene
         from .plots.style import save_figure
         if args.plot:
-            save_figure(draw_scene(result.history, args.scene), Path(args.plot), dpi=110)
+            save_figure(draw_scene(result.history, args.scene, read), Path(args.plot), dpi=110)
         if args.animate:
             animate_scene(result.history, args.animate, args.scene)
     if args.json:
         print_json(to_json_dict(result), one_line_per_key=True)
         return 0
     print(summary(result))
+    for line in read:
+        print(line)
     if not args.summary:
         for path in files.values():
             print(f"wrote {path}")

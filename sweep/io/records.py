@@ -5,6 +5,8 @@ sample k at time k*dt after the record's start.  Bundled records live in ``sweep
 (provenance in its README.md); a user's file is read by :func:`read_record_file`, whichever of
 :data:`FORMATS` it is in (``docs/record_formats.md``), by the readers of :mod:`sweep.io.formats`.
 Arrays are read-only and cached, so that a study reading the same record per cell reads it once.
+How each record was read (its :class:`~sweep.io.formats.base.Reading`) is what
+:func:`floor_provenance` gives a scene's outputs.
 """
 import functools
 import importlib.resources
@@ -14,11 +16,12 @@ from stat import S_ISREG
 
 from .formats import columns, cosmos, knet
 from .formats.at2 import read_at2
-from .formats.base import MAX_SAMPLES, Record, RecordError
+from .formats.base import MAX_SAMPLES, Reading, Record, RecordError
 from .formats.columns import read_two_column
 
-__all__ = ["ALIASES", "BUNDLED", "FORMATS", "MAX_SAMPLES", "NAMES", "Record", "RecordError",
-           "detect_format", "load_record", "read_at2", "read_record_file", "read_two_column"]
+__all__ = ["ALIASES", "BUNDLED", "FORMATS", "MAX_SAMPLES", "NAMES", "Reading", "Record",
+           "RecordError", "describe", "detect_format", "floor_provenance", "load_record",
+           "provenance_line", "read_at2", "read_record_file", "read_two_column"]
 
 BUNDLED = ("elcentro1940_ns", "elcentro1940_ew", "elcentro1940_ud", "taft1952_ew_s69e")
 ALIASES = {"taft1952_ew": "taft1952_ew_s69e"}
@@ -46,10 +49,14 @@ def _load_bundled(name):
     resource = _DATA / f"{name}.txt"
     with importlib.resources.as_file(resource) as path:
         rec = read_two_column(path)
-        header = [line[1:].strip() for line in path.read_text().splitlines()
-                  if line.startswith("#")]
+        lines = path.read_text().splitlines()
+    header = [line[1:].strip() for line in lines if line.startswith("#")]
     provenance = "; ".join(header) + "; see sweep/data/records/README.md"
-    return Record(name, rec.dt, rec.samples, provenance)
+    converted = next((f"line {k}: {line.strip()}" for k, line in enumerate(lines, 1)
+                      if line.startswith("#") and "m/s^2" in line), None)
+    reading = Reading("columns", "bundled record (two columns)", "bundled",
+                      converted, tuple(header), header[0] if header else "")
+    return Record(name, rec.dt, rec.samples, provenance, reading=reading)
 
 
 def load_record(name):
@@ -173,3 +180,50 @@ def read_record_file(path, units=None, *, format=None, dt=None, component=None):
         raise RecordError(f"{path}: not a regular file")
     return _read_file_cached(str(path), format, units, dt, component,
                              (stat.st_mtime_ns, stat.st_size))
+
+
+# How each origin of a unit is said in one line (provenance_line)
+_UNITS_SAID = {"header": "from the header", "comment": "from a # comment",
+               "units:": "from the scene's units:", "default": "the default: no units: and no "
+               "comment names one", "format": "the format's unit: the header names none",
+               "bundled": "as converted for the bundled file"}
+
+
+def describe(rec):
+    """The provenance of a record read from a file or bundled, as a JSON-ready dict: ``source``
+    (the file's path or the bundled name), ``format`` and ``reader`` (the format in words),
+    ``units`` the numbers were read in, ``units_from`` (``header``, ``comment``, ``units:``,
+    ``default``, ``format`` or ``bundled``) and ``units_line`` (the line that states it, or
+    None), ``dt`` [s] and ``npts`` as read, ``title``, ``header`` (the header lines or the
+    station and event text found), ``notes`` (what else was done to the numbers).  None for
+    a record that no file gave (a synthetic motion)."""
+    reading = rec.reading
+    if reading is None:
+        return None
+    return {"source": rec.name, "format": reading.format, "reader": reading.reader,
+            "units": rec.units, "units_from": reading.units_from,
+            "units_line": reading.units_line, "dt": rec.dt, "npts": len(rec.samples),
+            "title": reading.title, "header": list(reading.header), "notes": list(reading.notes)}
+
+
+def floor_provenance(excitation):
+    """``{component: describe(record)}`` of the components of a resolved ``excitation``
+    (``scene_schema.resolve_scene``) that are records read from a file or bundled."""
+    found = {}
+    for component, ground in excitation.items():
+        said = describe(ground["source"]) if ground["kind"] == "record" else None
+        if said is not None:
+            found[component] = said
+    return found
+
+
+def provenance_line(component, said):
+    """One line of :func:`describe`'s dict ``said`` of the floor ``component``
+    (``horizontal``): the record, its reader, unit and where it came from, dt, samples and
+    the record's title."""
+    where = _UNITS_SAID[said["units_from"]]
+    if said["units_line"]:
+        where += f", {said['units_line'].partition(':')[0]}"  # "line 3"
+    line = (f"{component} record {said['source']}: read as {said['reader']}, in "
+            f"{said['units']} ({where}), dt {said['dt']:g} s, {said['npts']} samples")
+    return line + (f"; {said['title']}" if said["title"] else "")

@@ -18,6 +18,7 @@ from .style import GAL
 
 MAX_OUTLINES = 150            # more outlines than this blur into a smear
 TITLE_WIDTH = 100             # characters of a scene plot's title line (13 pt over 12 inches)
+CAPTION_WIDTH = 200           # ... of its caption's lines (7 pt)
 ANIMATION_TITLE_WIDTH = 70    # ... of an animation's (8 pt over 5 inches)
 FRAME_DT = 0.02               # s between frames of an animation: 50 frames a second, real time
 ALPHA_LINE_REACH = 0.5        # theta/alpha = ±1 drawn when max |theta|/alpha is at least this
@@ -114,10 +115,11 @@ def _draw_theta(ax, ds, alpha):
     ax.set_ylabel(f"θ / α\n(α = {alpha:.3g} rad)")
 
 
-def draw_scene(ds, name=""):
+def draw_scene(ds, name="", caption=()):
     """Positions, θ/α, the moving floor components and the motion type from a history
     Dataset (``cf.history_dataset``): a matplotlib Figure titled with what the body did
-    (:func:`scene_verdict`) over ``name`` (the scene's file or name), smaller."""
+    (:func:`scene_verdict`) over ``name`` (the scene's file or name), smaller, and captioned
+    with the lines of ``caption`` (how each record was read, ``records.provenance_line``)."""
     b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
     alpha = math.atan2(b, h)
     quiet = quiet_components(ds)
@@ -157,6 +159,9 @@ def draw_scene(ds, name=""):
     ax_mode.set_xlabel("time [s]")
     for ax in body.axes[1:-1]:
         ax.tick_params(labelbottom=False)
+    if caption:
+        fig.supxlabel("\n".join(_wrap(line, CAPTION_WIDTH) for line in caption), fontsize=7,
+                      color="0.35", ha="left", x=0.01)
     return fig
 
 

@@ -12,6 +12,7 @@ from ..groundmotion import applied
 from ..groundmotion.intensity import G
 from ..io.plausibility import scene_doubts
 from ..io.problems import FileProblems, Problem, warn
+from ..io.records import floor_provenance
 from ..io.scene_schema import MAX_HISTORY, load_scene, resolve_scene
 from .verdict import verdict
 
@@ -26,11 +27,14 @@ SUMMARY_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "mes
                 "mode_time", "impact_count", "impact_log_truncated", "energy_clamps", "steps",
                 "cpu_s")
 IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
+PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file was read
 
-Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS + ("B", "H", "alpha"))
+Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS + ("B", "H", "alpha",
+                                                                   PROVENANCE_KEY))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
 ``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), and the body:
-breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad]."""
+breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad], and the
+``provenance`` of each floor component that is a record (``records.floor_provenance``)."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
@@ -58,7 +62,7 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     motion = applied.peaks(resolved["excitation"]["horizontal"])
     B, H = resolved["body"]["B"], resolved["body"]["H"]
     result = Result(*run_scene(resolved, history=history, max_log=max_log), *motion[:3], B, H,
-                    math.atan2(B, H))
+                    math.atan2(B, H), floor_provenance(resolved["excitation"]))
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
@@ -92,5 +96,6 @@ def to_json_dict(result):
     of DESIGN.md section 4 (``JSON_KEYS``) plus the end status message, the slenderness angle,
     the impact count (``impact_times`` holds the first ``impact_count`` impacts only when
     ``impact_log_truncated``), the impacts whose restitution was clamped, the peaks of the
-    horizontal motion applied, and whether each impact slipped."""
-    return {key: getattr(result, key) for key in SUMMARY_KEYS + IMPACT_KEYS}
+    horizontal motion applied, how each record was read (``provenance``: reader, unit and
+    where it came from, dt, samples, header), and whether each impact slipped."""
+    return {key: getattr(result, key) for key in SUMMARY_KEYS + (PROVENANCE_KEY,) + IMPACT_KEYS}

@@ -1,7 +1,9 @@
 """PEER NGA ``.AT2`` files: acceleration in g (a ``units:`` other than g is refused).
 
 The format: four header lines, the fourth giving NPTS and DT (``NPTS= 5372, DT= .0100 SEC`` or
-the older ``5372 .0100 NPTS, DT``), then NPTS values in any number of columns.
+the older ``5372 .0100 NPTS, DT``), then NPTS values in any number of columns.  The second line
+names the event, date, station and component, the third the quantity and its unit
+(``ACCELERATION TIME SERIES IN UNITS OF G``): a unit other than g named there is refused.
 """
 import math
 import re
@@ -9,10 +11,12 @@ import re
 import numpy as np
 
 from ...paper import criteria
-from .base import (MAX_SAMPLES, RecordError, check_finite, check_units, line_error,
+from ..units import fixed_factor
+from .base import (MAX_SAMPLES, Reading, RecordError, check_finite, check_units, line_error,
                    make_record, parse_lines, read_lines)
 
 _HEADER_LINES = 4
+_UNITS = re.compile(r"\bUNITS?\s+OF\s+(\S+)", re.IGNORECASE)
 
 
 def read_at2(path, units=None):
@@ -25,6 +29,7 @@ def read_at2(path, units=None):
     kind = lines[2].upper()
     if "VELOCITY" in kind or "DISPLACEMENT" in kind:
         raise RecordError(f"{path}: line 3 says this is not an acceleration record: {lines[2]}")
+    units_from, units_line = _stated_units(lines[2], path)
     npts, dt = _npts_dt(lines[3], path)
     numbers = range(_HEADER_LINES + 1, len(lines) + 1)
     values, counts = parse_lines(lines[_HEADER_LINES:], numbers, path)
@@ -32,7 +37,25 @@ def read_at2(path, units=None):
         raise RecordError(f"{path}: header says NPTS = {npts}, found {len(values)} values")
     check_finite(values, np.repeat(numbers, counts), path)
     provenance = f"{path}: PEER NGA AT2, {lines[1].strip()}, NPTS = {npts}, DT = {dt:g} s, g"
-    return make_record(path, dt, values * criteria.G, provenance, "g")
+    reading = Reading("at2", "PEER NGA AT2", units_from, units_line,
+                      tuple(line.strip() for line in lines[:_HEADER_LINES]), lines[1].strip())
+    return make_record(path, dt, values * criteria.G, provenance, "g", reading)
+
+
+def _stated_units(line, path):
+    """``(units_from, units_line)`` of the third header line: ``header`` where it names g,
+    ``format`` where it names no unit (the format's g is taken)."""
+    match = _UNITS.search(line)
+    if match is None:
+        return "format", None
+    named = match[1].rstrip(".,;")
+    try:
+        factor = fixed_factor(named, "acceleration")
+    except ValueError:
+        return "format", None
+    if not math.isclose(factor, criteria.G, rel_tol=1e-12):
+        raise line_error(path, 3, f"names the unit {named}; a PEER .AT2 file is read in g")
+    return "header", f"line 3: {line.strip()}"
 
 
 def _npts_dt(line, path):

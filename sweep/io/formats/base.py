@@ -4,6 +4,8 @@ A reader turns one file into a :class:`Record`: uniformly sampled acceleration i
 it cannot take raises :class:`RecordError` with a message that starts with the file's path and,
 where one line is at fault, names it (``line 23: expected 8 integers, got 'abc'``).  A unit the
 user gives (``units:``) that is not the one the file states is refused (:func:`check_units`).
+Each reader says how it read the file (:class:`Reading`: the format, where the unit came from,
+the header lines it found), which the scene's outputs show.
 """
 import functools
 import math
@@ -25,6 +27,44 @@ class RecordError(ValueError):
     """A record name is unknown or a record file cannot be read."""
 
 
+UNITS_FROM = ("header", "comment", "units:", "default", "format", "bundled")
+"""Where the unit of a file's numbers came from: a header line, a ``#`` comment, the scene's
+``units:`` key, the default of column files (m/s^2), the format itself (a PEER ``.AT2`` file is
+in g), or the bundled record's conversion (``sweep/data/records/README.md``)."""
+
+
+@dataclass(frozen=True)
+class Reading:
+    """How a reader read a record file: what ``--summary``, ``--json`` and plot captions show.
+
+    Attributes
+    ----------
+    format : str
+        The reader's key (``sweep.io.records.FORMATS``): ``at2``, ``knet``, ``cosmos``,
+        ``columns`` or ``column``.
+    reader : str
+        The format in words: ``PEER NGA AT2``, ``K-NET/KiK-net ASCII``, ``COSMOS V2``, ...
+    units_from : str
+        Where the unit of the numbers came from, one of :data:`UNITS_FROM`.
+    units_line : str or None
+        The line that states the unit, ``line <n>: <text>``; None where no line does.
+    header : tuple of str
+        The header lines, or the station and event text, that the reader found.
+    title : str
+        One line that names the record (event, station, component) where the file says it.
+    notes : tuple of str
+        What was done to the numbers besides the unit (a mean removed, a resampling).
+    """
+
+    format: str
+    reader: str
+    units_from: str
+    units_line: str = None
+    header: tuple = ()
+    title: str = ""
+    notes: tuple = ()
+
+
 @dataclass(frozen=True, eq=False)
 class Record:
     """A uniformly sampled acceleration record.
@@ -41,6 +81,8 @@ class Record:
         Where the data come from and what was done to them.
     units : str
         Acceleration unit the file's numbers were read in (m/s^2 for the bundled records).
+    reading : Reading or None
+        How the file was read; None for a record that no file gave (a synthetic motion).
     """
 
     name: str
@@ -48,6 +90,7 @@ class Record:
     samples: np.ndarray
     provenance: str
     units: str = "m/s^2"
+    reading: Reading = None
 
     @property
     def pga(self):
@@ -172,9 +215,9 @@ def check_units(given, stated, factor, path, line=None,
                       "units: out")
 
 
-def make_record(path, dt, samples, provenance, units="m/s^2"):
+def make_record(path, dt, samples, provenance, units="m/s^2", reading=None):
     """The :class:`Record` of a file: ``samples`` [m/s^2] every ``dt`` [s], checked and frozen;
-    ``units``: the unit the file's numbers were read in.
+    ``units``: the unit the file's numbers were read in; ``reading``: how (:class:`Reading`).
 
     Raises
     ------
@@ -194,4 +237,4 @@ def make_record(path, dt, samples, provenance, units="m/s^2"):
     if bad.size:
         raise RecordError(f"{path}: sample {bad[0] + 1} leaves the float range in m/s^2")
     samples.flags.writeable = False
-    return Record(str(path), float(dt), samples, provenance, units)
+    return Record(str(path), float(dt), samples, provenance, units, reading)

@@ -11,7 +11,7 @@ import re
 import numpy as np
 
 from ..units import fixed_factor
-from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, check_units,
+from .base import (MAX_SAMPLES, Reading, RecordError, check_counts, check_finite, check_units,
                    line_error, make_record, parse_lines, read_lines)
 
 # Times in text files carry a few decimals; a grid is uniform if every time is within this
@@ -19,6 +19,7 @@ from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, check_u
 _UNIFORM_TOL = 0.01
 _DT_DIGITS = 12  # significant digits kept of dt fitted to printed times (0.02, not 0.0199...)
 DEFAULT_UNITS = "m/s^2"
+HEADER_COMMENTS = 20  # comments of a file shown as its header (a file may comment every row)
 _WORD = re.compile(r"[A-Za-z][A-Za-z0-9/^*]*")  # a unit's spelling: m/s^2, cm/sec2, gal, g
 _AFTER_NUMBER = re.compile(r"\d\s*$")  # "0.35 g", "342 gal": a value, not the column's unit
 _INTRODUCED = re.compile(r"(?:\b(?:in|units?|of)\s*[:=]?|[\[(])\s*$", re.IGNORECASE)
@@ -41,7 +42,7 @@ def read_two_column(path, units=None):
         onto a uniform grid whose step is the median step; the provenance says so.
     """
     text = read_lines(path)
-    units, factor, said = _units(units, text, path)
+    units, factor, said, units_from = _units(units, text, path)
     numbers, lines = _data_lines(text, path)
     values, counts = parse_lines(lines, numbers, path, bad="cannot read as a two-column text "
                                                           "file: {token!r} is not a number")
@@ -52,7 +53,9 @@ def read_two_column(path, units=None):
     check_finite(a, numbers, path, "the acceleration of data row")
     dt, samples, note = _uniform(t, a * factor, numbers, path)
     provenance = f"{path}: two columns time/acceleration in {said}, n = {len(t)}{note}"
-    return make_record(path, dt, samples, provenance, units)
+    reading = _reading("columns", "two columns (time, acceleration)", units_from, text,
+                       (note[2:],) if note else ())
+    return make_record(path, dt, samples, provenance, units, reading)
 
 
 def read_single_column(path, dt, units=None):
@@ -68,13 +71,33 @@ def read_single_column(path, dt, units=None):
         Unit of the values, as for :func:`read_two_column`.
     """
     text = read_lines(path)
-    units, factor, said = _units(units, text, path)
+    units, factor, said, units_from = _units(units, text, path)
     numbers, lines = _data_lines(text, path)
     values, counts = parse_lines(lines, numbers, path)
     check_finite(values, np.repeat(numbers, counts), path)
     provenance = (f"{path}: one column of accelerations in {said}, n = {len(values)}, "
                   f"dt = {dt:g} s given in the scene")
-    return make_record(path, dt, values * factor, provenance, units)
+    reading = _reading("column", "one column (accelerations, dt given)", units_from, text)
+    return make_record(path, dt, values * factor, provenance, units, reading)
+
+
+def _comments(text):
+    """The ``#`` comments of a file's lines, ``(line number, text)``, in order."""
+    return [(number, line.partition("#")[2].strip()) for number, line in enumerate(text, 1)
+            if "#" in line and line.partition("#")[2].strip()]
+
+
+def _reading(format, reader, units_from, text, notes=()):
+    """The :class:`Reading` of a column file: its comments are its header (the first
+    ``HEADER_COMMENTS``), the first one its title; ``units_from`` = ``(where, line number or
+    None)`` from :func:`_units`."""
+    found = _comments(text)
+    where, line = units_from
+    return Reading(format, reader, where, None if line is None else
+                   f"line {line}: {text[line - 1].strip()}",
+                   tuple(comment for _, comment in found[:HEADER_COMMENTS]),
+                   found[0][1] if found else "",
+                   notes)
 
 
 def stated_units(text):
@@ -106,9 +129,10 @@ def stated_units(text):
 
 
 def _units(given, text, path):
-    """``(unit, factor to m/s^2, how the provenance says it)`` of a file's numbers: the unit
-    its comments state (:func:`stated_units`), which ``given`` (``units:``) must equal, else
-    ``given``, else m/s^2.  Comments that state different units need ``given``."""
+    """``(unit, factor to m/s^2, how the provenance says it, (where from, line))`` of a file's
+    numbers: the unit its comments state (:func:`stated_units`; from ``comment``, its line),
+    which ``given`` (``units:``) must equal, else ``given`` (``units:``), else m/s^2
+    (``default``).  Comments that state different units need ``given``."""
     stated = {}  # factor -> (unit, line) of the first line that states it
     for unit, factor, line in stated_units(text):
         stated.setdefault(factor, (unit, line))
@@ -117,15 +141,17 @@ def _units(given, text, path):
         if given is None:
             raise RecordError(f"{path}: the comments state different units ({lines}): give "
                               "units:")
-        return given, _factor(given, path), f"{given} (units:; the comments state {lines})"
+        return (given, _factor(given, path), f"{given} (units:; the comments state {lines})",
+                ("units:", None))
     if stated:
         (factor, (unit, line)), = stated.items()
         check_units(given, unit, factor, path, line, said="a comment gives the accelerations "
                                                            "in")
-        return unit, factor, f"{unit} (stated on line {line})"
+        return unit, factor, f"{unit} (stated on line {line})", ("comment", line)
     if given is not None:
-        return given, _factor(given, path), f"{given} (units:)"
-    return DEFAULT_UNITS, 1.0, f"{DEFAULT_UNITS} (the default: no units: nor a comment)"
+        return given, _factor(given, path), f"{given} (units:)", ("units:", None)
+    return (DEFAULT_UNITS, 1.0, f"{DEFAULT_UNITS} (the default: no units: nor a comment)",
+            ("default", None))
 
 
 def _factor(units, path):

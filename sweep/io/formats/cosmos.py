@@ -27,7 +27,7 @@ import numpy as np
 
 from ...paper import criteria
 from ..units import fixed_factor
-from .base import (MAX_SAMPLES, RecordError, check_counts, check_finite, check_units,
+from .base import (MAX_SAMPLES, Reading, RecordError, check_counts, check_finite, check_units,
                    fixed_width, line_error, make_record, parse_lines, read_lines)
 
 EXTENSIONS = (".v2", ".v2c")
@@ -49,7 +49,10 @@ _END = re.compile(r"end[\s-]+of[\s-]+data", re.I)
 _Dialect = namedtuple("_Dialect", "label header data example")
 """A file layout: its name, its channel-header reader, the pattern of a data block's first
 line, and an example of the acceleration block's first line for messages."""
-_Channel = namedtuple("_Channel", "name description dt block")
+_Channel = namedtuple("_Channel", "name header dt block")
+_Channel.__doc__ = """A component: its name, the header lines that describe it (the first, then
+those naming the event and station), its sample step (None: on the data line) and its
+acceleration block ``(match, index of the announcing line, values, line of each value)``."""
 
 
 def read_cosmos(path, component=None, units=None):
@@ -91,11 +94,16 @@ def read_cosmos(path, component=None, units=None):
                 said="the header gives the accelerations in")
     check_finite(values, line_of, path)
     dt = channel.dt if channel.dt is not None else _step(match["dt"], announced, path)
-    provenance = (f"{path}: {dialect.label}, {channel.description}, component {k + 1} of "
+    description = "; ".join(channel.header[1:])
+    provenance = (f"{path}: {dialect.label}, {description}, component {k + 1} of "
                   f"{len(channels)} ({channel.name}), acceleration block of line "
                   f"{announced + 1}: n = {len(values)}, dt = {dt:g} s, in {stated}; corrected "
                   f"by the network (Volume 2), used as given")
-    return make_record(path, dt, values * factor, provenance, stated)
+    reading = Reading("cosmos", dialect.label, "header",
+                      f"line {announced + 1}: {lines[announced].strip()}",
+                      (*channel.header, " ".join(lines[announced].split())),
+                      f"{description}; component {k + 1} of {len(channels)} ({channel.name})")
+    return make_record(path, dt, values * factor, provenance, stated, reading)
 
 
 def _channels(lines, dialect, path):
@@ -106,7 +114,7 @@ def _channels(lines, dialect, path):
             start += 1
         if start == len(lines):
             return
-        name, description, dt, i = dialect.header(lines, start, path)
+        name, header, dt, i = dialect.header(lines, start, path)
         acceleration = None
         while i < len(lines) and (match := dialect.data.match(lines[i])):
             if acceleration is None and match["quantity"].lower().startswith("accel"):
@@ -118,12 +126,12 @@ def _channels(lines, dialect, path):
                 i += 1
         if acceleration is None:
             _expect(dialect.data, lines, i, path, dialect.example)
-        yield _Channel(name, description, dt, acceleration)
+        yield _Channel(name, header, dt, acceleration)
         start = i
 
 
 def _cosmos_header(lines, start, path):
-    """``(name, description, dt, index of the first data block)`` of a COSMOS component."""
+    """``(name, header lines, dt, index of the first data block)`` of a COSMOS component."""
     first = _expect(_COSMOS_FIRST, lines, start, path,
                     "a COSMOS header, e.g. 'Corrected acceleration (Format v01.20 with 13 "
                     "text lines)'", search=True)
@@ -149,21 +157,21 @@ def _cosmos_header(lines, start, path):
     i += 1 + int(comments[1])
     station = re.search(r"Sta\s+Chan\s+\S+\s*:\s*(.*?)\s*\(", text[8] if len(text) > 8 else "")
     name = station[1] if station and station[1] else "unnamed"
-    description = "; ".join(" ".join(text[k].split()) for k in (1, 4) if k < len(text))
-    return name, description, reals[_DT_MS - 1] / 1000.0, i
+    header = tuple(" ".join(text[k].split()) for k in (0, 1, 4) if k < len(text))
+    return name, header, reals[_DT_MS - 1] / 1000.0, i
 
 
 def _csmip_header(lines, start, path):
-    """``(name, description, None, index of the first data block)`` of a CSMIP channel: its
+    """``(name, header lines, None, index of the first data block)`` of a CSMIP channel: its
     sample step is on the data lines."""
     _expect(_CSMIP_FIRST, lines, start, path, "a COSMOS header ('Corrected acceleration "
             "(Format v01.20 with 13 text lines)') or a CSMIP Volume 2 channel ('Corrected "
             "accelerogram ... Chan  1: 360 Deg')")
     channel = re.search(r"Chan\s+\d+\s*:\s*(\S+(?: \S+)*)", lines[start], re.I)
     text = lines[start:start + _CSMIP_HEADER_LINES]
-    description = "; ".join(" ".join(text[k].split()) for k in (2, 5, 6) if k < len(text))
+    header = tuple(" ".join(text[k].split()) for k in (0, 2, 5, 6) if k < len(text))
     name = channel[1] if channel else "unnamed"
-    return name, description, None, start + _CSMIP_HEADER_LINES
+    return name, header, None, start + _CSMIP_HEADER_LINES
 
 
 _COSMOS = _Dialect(

@@ -16,7 +16,7 @@ import re
 
 import numpy as np
 
-from .base import (RecordError, check_counts, check_finite, check_units, line_error,
+from .base import (Reading, RecordError, check_counts, check_finite, check_units, line_error,
                    make_record, parse_lines, read_lines)
 
 EXTENSIONS = (".ns", ".ew", ".ud", ".ns1", ".ew1", ".ud1", ".ns2", ".ew2", ".ud2")
@@ -85,7 +85,14 @@ def read_knet(path, units=None):
                   f"scale factor {header['Scale Factor']}, mean of the whole record "
                   f"({mean:.6g} gal) removed, peak {peak:.6g} gal (header's Max. Acc. "
                   f"{max_acc:g}), n = {len(gal)}, dt = {1 / frequency:g} s")
-    return make_record(path, 1.0 / frequency, gal * GAL, provenance, "gal")
+    scale_line = LABELS.index("Scale Factor") + 1
+    reading = Reading("knet", "K-NET/KiK-net ASCII", "header",
+                      f"line {scale_line}: {lines[scale_line - 1].strip()}",
+                      tuple(" ".join(line.split()) for line in lines[:len(LABELS)]),
+                      f"station {header['Station Code']}, Dir. {header['Dir.']}, event "
+                      f"{header['Origin Time']} JST M{header['Mag.']}",
+                      (f"mean of the whole record ({mean:.6g} gal) removed",))
+    return make_record(path, 1.0 / frequency, gal * GAL, provenance, "gal", reading)
 
 
 def _count(token):
