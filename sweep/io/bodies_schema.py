@@ -25,7 +25,8 @@ label of the direction of fall.
 
 ``motions``
     ``{record: [names or paths]}`` (bundled records by name, files as PEER ``.AT2`` or two
-    columns, relative to the bodies file's folder), ``{record: {glob: 'motions/*.AT2'}}``, or
+    columns, relative to the bodies file's folder), ``{record: {glob: 'motions/*.AT2'}}`` (the
+    extension in any case; the other files of its folder are warned of), or
     ``{synthetic: {model: boore2003, magnitude, distance, vs30, dt}, seeds: N}`` (the motions
     of seeds 0 .. N-1 of ``sweep.groundmotion.stochastic``).  Each is one member.
 ``levels``
@@ -43,7 +44,6 @@ label of the direction of fall.
 once with its dotted path (``sites[0].bodies[2].B``, ``ensemble.levels.pga.num``), as scene
 and study files do; ``load_bodies`` reads a one-site file.
 """
-import glob
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -54,7 +54,8 @@ from pydantic import (Field, StrictBool, StrictFloat, StrictInt, StrictStr, Vali
                       ValidationInfo, field_validator, model_validator)
 
 from . import records
-from .plausibility import body_doubts
+from .files import find_files, named
+from .plausibility import body_doubts, glob_notes, levels_doubt
 from .problems import MISSING, FieldError, FileProblems, Problem, validation_problems, warn
 from .scene_schema import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
                            quantity)
@@ -298,11 +299,11 @@ def _checked_records(value, base_dir):
         pattern = value.get("glob")
         if set(value) != {"glob"} or not isinstance(pattern, str) or not pattern.strip():
             raise FieldError("record", value, "a record glob is {glob: 'folder/*.AT2'} alone")
-        found = sorted(p for p in glob.glob(pattern, root_dir=base_dir, recursive=True)
-                       if (Path(base_dir) / p).is_file())
+        found, skipped = find_files(pattern, base_dir)
         if not found:
+            held = f"; the folder holds {named(skipped)}" if skipped else ""
             raise FieldError(("record", "glob"), pattern, "matches no file (relative to "
-                             f"{Path(base_dir).resolve()})")
+                             f"{Path(base_dir).resolve()}){held}")
         value = found
     if not isinstance(value, list) or not value or len(value) > MAX_MEMBERS:
         raise FieldError("record", value, "must be a list of record names or paths, or "
@@ -426,6 +427,27 @@ def _bodies(entries):
                  for i, b in enumerate(entries))
 
 
+def _glob_notes(motions, base_dir):
+    """The files of its folders that a record glob of the ensemble leaves out (warned of)."""
+    if not isinstance(motions.get("record"), dict):
+        return []
+    pattern = motions["record"]["glob"]
+    return glob_notes("ensemble.motions.record.glob", pattern, *find_files(pattern, base_dir))
+
+
+def _levels_doubts(levels, raw):
+    """The doubt of PGA levels written as bare numbers that read like g, at their paths as
+    written (``ensemble.levels.pga.start``, ``ensemble.levels.pga[0]`` for a plain list)."""
+    path = "ensemble.levels.pga"
+    if levels.values is not None:
+        listed = f"{path}[{{}}]" if isinstance(raw, list) else f"{path}.values[{{}}]"
+        written = [(listed.format(i), q) for i, q in enumerate(levels.values)]
+    else:
+        written = [(f"{path}.{key}", getattr(levels, key)) for key in ("start", "stop")]
+    doubt = levels_doubt(written, path)
+    return [] if doubt is None else [doubt]
+
+
 def load_survey(source):
     """Read and check a bodies file (or a dict of the same schema); every problem at once.
 
@@ -461,8 +483,12 @@ def load_survey(source):
         raise FileProblems(problems, path)
     entries = ([("bodies", checked.bodies)] if checked.sites is None else
                [(f"sites[{i}].bodies", s.bodies) for i, s in enumerate(checked.sites)])
-    warn([doubt for where, bodies in entries for j, entry in enumerate(bodies)
-          for doubt in body_doubts(entry, f"{where}[{j}]")])
+    doubts = [doubt for where, bodies in entries for j, entry in enumerate(bodies)
+              for doubt in body_doubts(entry, f"{where}[{j}]")]
+    if checked.ensemble is not None:
+        doubts += _glob_notes(raw["ensemble"]["motions"], "." if path is None else path.parent)
+        doubts += _levels_doubts(checked.ensemble.levels.pga, raw["ensemble"]["levels"]["pga"])
+    warn(doubts)
     if checked.sites is None:
         sites = (Site(name=checked.site, bodies=_bodies(checked.bodies)),)
     else:

@@ -1,10 +1,18 @@
-"""Files written whole or not at all: a temporary name in the same folder, then ``os.replace``.
+"""Files written whole or not at all: a temporary name in the same folder, then ``os.replace``;
+and the files a pattern of the user's finds.
 
 ``os.replace`` is atomic on one file system, so a reader (or a run that resumes after being
 killed) sees either the old file or the new one, never half of one.  Every file the package
-writes goes through :func:`replacing`: part files, manifests, datasets, histories, figures.
+writes goes through :func:`replacing`: part files, manifests, datasets, histories, figures,
+tables (:func:`write_csv`, numbers to meaningful digits).  :func:`find_files` expands a glob
+of record files (``records/*.AT2``) with the extension matched whatever its case, as the
+readers take ``.AT2`` and ``.at2`` alike.
 """
+import csv
+import glob
+import math
 import os
+import re
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -40,6 +48,30 @@ def write_atomic(path, write):
     """Call ``write(file)`` on a binary file that becomes ``path`` atomically."""
     with replacing(path) as tmp, open(tmp, "wb") as f:
         write(f)
+    return Path(path)
+
+
+CSV_DIGITS = 6  # significant digits of a float in a table: 0.7, not 0.7000000000000001
+
+
+def csv_value(value, digits=CSV_DIGITS):
+    """A value as a table cell: None empty, a float to ``digits`` significant digits (float
+    noise dropped: ``0.7``, ``0.0512346``, ``35.25``), anything else as ``str``."""
+    if value is None:
+        return ""
+    if isinstance(value, float) and math.isfinite(value):
+        return f"{value:.{digits}g}"
+    return str(value)
+
+
+def write_csv(path, rows, digits=CSV_DIGITS):
+    """Write ``rows`` (dicts; the columns in the order first seen) as a CSV file, atomically,
+    each value through :func:`csv_value`."""
+    columns = list(dict.fromkeys(key for row in rows for key in row))
+    with replacing(path) as tmp, open(tmp, "w", newline="") as f:
+        writer = csv.DictWriter(f, columns)
+        writer.writeheader()
+        writer.writerows({k: csv_value(v, digits) for k, v in row.items()} for row in rows)
     return Path(path)
 
 
@@ -86,3 +118,59 @@ def output_problems(paths):
     from .problems import Problem
     return [Problem(option, str(path), why) for option, path in paths.items()
             if path is not None and (why := output_problem(path)) is not None]
+
+
+_MAGIC = re.compile(r"[*?[]")
+MAX_NAMED = 5  # skipped files named in a message; the others are counted
+
+
+def _any_case(name):
+    """A glob of a file name whose extension (after the last dot) matches in any case:
+    ``*.AT2`` -> ``*.[aA][tT]2``.  An extension that holds a glob's own characters is kept."""
+    stem, dot, extension = name.rpartition(".")
+    if not dot or _MAGIC.search(extension):
+        return name
+    return stem + dot + "".join(f"[{c.lower()}{c.upper()}]" if c.isalpha() else c
+                                for c in extension)
+
+
+def find_files(pattern, base_dir="."):
+    """The files a glob finds below ``base_dir``, its extension matched in any case, and the
+    files of the same folders that it leaves out.
+
+    Parameters
+    ----------
+    pattern : str
+        A glob relative to ``base_dir`` (``**`` spans folders): ``records/*.AT2`` finds
+        ``records/a.at2`` too.
+    base_dir : str or Path
+
+    Returns
+    -------
+    found : list of str
+        The regular files matched, as relative paths in the pattern's form, sorted.
+    skipped : list of str
+        The other visible regular files of the folders that hold a match (or, with no match,
+        of the pattern's folder when it names one), the same form, sorted.
+    """
+    folder, _, name = pattern.rpartition("/")
+    wanted = f"{folder}/{_any_case(name)}" if folder else _any_case(name)
+    found = sorted({p for p in glob.glob(wanted, root_dir=base_dir, recursive=True)
+                    if (Path(base_dir) / p).is_file()})
+    folders = {os.path.dirname(p) for p in found}
+    if not found and not _MAGIC.search(folder):
+        folders = {folder}
+    chosen = set(found)
+    skipped = sorted(os.path.join(f, entry.name) for f in folders
+                     if (Path(base_dir) / f).is_dir()
+                     for entry in os.scandir(Path(base_dir) / f)
+                     if entry.is_file() and not entry.name.startswith(".")
+                     and os.path.join(f, entry.name) not in chosen)
+    return found, skipped
+
+
+def named(paths, limit=MAX_NAMED):
+    """``a.txt, b.VT2 and 3 more``: at most ``limit`` file names, then a count."""
+    names = [os.path.basename(p) for p in paths]
+    more = len(names) - limit
+    return ", ".join(names[:limit]) + (f" and {more} more" if more > 0 else "")

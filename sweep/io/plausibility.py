@@ -1,18 +1,22 @@
 """Values that are valid but likely not what was meant: the warnings of a scene.
 
-A bare number is in SI units, so ``B: 30`` is a body 30 m wide and ``phase: 90`` is 90 rad; a
-file in m/s^2 read with ``units: g`` shakes the floor ten times too hard.  :func:`scene_doubts`
-finds such values in a checked scene and its resolved SI form, each as a
+A bare number is in SI units, so ``B: 30`` is a body 30 m wide, ``phase: 90`` is 90 rad and
+``pga: 0.4`` is 0.4 m/s^2 (0.04 g, under which most bodies stand); a file in m/s^2 read with
+``units: g`` shakes the floor ten times too hard.  :func:`scene_doubts` finds such values in a
+checked scene and its resolved SI form, each as a
 :class:`~sweep.io.problems.Problem` whose message starts with the value as written
 (``30 (a bare number is in m): a body 30 m wide; did you mean 30 cm?``);
 :func:`~sweep.io.problems.warn` issues them as ``InputWarning`` s, which never stop the work.
-A study reports each once per axis (``sweep.io.study_schema.cell_problems``).
+A study reports each once per axis (``sweep.io.study_schema.cell_problems``); a list of
+accelerations (a study's axis, the levels of a bodies file) is doubted as a whole
+(:func:`levels_read_in_si`).
 """
 import math
 from pathlib import Path
 
 from ..paper.criteria import G
 from . import units
+from .files import named
 from .problems import Problem
 
 # Bodies that rock are furniture, equipment, tombstones and statues, 0.1 to a few metres; a
@@ -25,6 +29,11 @@ MAX_BARE_ANGLE = 2.0 * math.pi  # rad
 MAX_PGA = 3.0 * G  # m/s^2
 # A file read in g whose numbers exceed this (5 g) more likely holds m/s^2 or gal.
 MAX_PEAK_IN_G = 5.0
+# Peak floor accelerations that rock or overturn bodies are 1-10 m/s^2 and rarely below
+# 0.2 m/s^2 (West's (B/H) g is 1 m/s^2 even for a body ten times taller than wide), while a
+# fraction of g is almost always below 2: a bare acceleration (m/s^2) below this, other than 0,
+# reads like g.
+MAX_BARE_G = 2.0  # m/s^2
 # Floors rock bodies at 0.1-20 Hz; above this a frequency is more likely an angular
 # frequency in rad/s or a sampling rate.
 MAX_FREQUENCY = 100.0  # Hz
@@ -37,6 +46,41 @@ _SIZES = {"B": "a body {:g} m wide", "H": "a body {:g} m tall",
           "i_g": "a radius of gyration of {:g} m"}
 _FRICTION = ("mu", "mu_s", "mu_k", "mu_edge_s", "mu_edge_k")
 _SCALING = ("scale_with", "scale", "pga", "pgv")
+
+
+class ReadsAsG(Problem):
+    """The doubt of a bare acceleration that reads like g (a :class:`Problem`): a study weighs
+    it against the other values of its axis (:func:`levels_read_in_si`)."""
+
+    __slots__ = ()
+
+
+def reads_as_g(q):
+    """True for a bare acceleration whose size reads like a fraction of g:
+    0 < abs(value) < ``MAX_BARE_G``."""
+    return not q.unit and q.dimension == "acceleration" and 0.0 < abs(q.value) < MAX_BARE_G
+
+
+def levels_read_in_si(values):
+    """True when a list of accelerations as written (numbers, unit strings or
+    :class:`~sweep.io.units.Quantity`) holds a bare number of ``MAX_BARE_G`` or more: its bare
+    numbers are then meant in m/s^2 (``[0.5, 1, 2, 4]``), none of them is doubted."""
+    def bare(value):
+        try:
+            q = units.parse_quantity(value, "acceleration")
+        except ValueError:
+            return None
+        return None if q.unit else q.value
+
+    return any(abs(v) >= MAX_BARE_G for v in map(bare, values) if v is not None)
+
+
+def _g_doubt(path, q):
+    """The doubt of a bare acceleration that reads like g."""
+    v = q.value
+    return ReadsAsG(path, v, f"{_written(q)}: {v / G:.3g} g; did you mean {v:g} g "
+                             f"({v * G:.3g} m/s^2)? write '{v:g} g' or '{v:g} m/s^2' to "
+                             "silence this")
 
 
 def _quantities(model, path=""):
@@ -64,6 +108,8 @@ def _quantity_doubt(path, q):
     if not q.unit and q.dimension == "angle" and abs(q.value) > MAX_BARE_ANGLE:
         return Problem(path, q.value, f"{_written(q)}: {q.value / (2 * math.pi):.3g} turns; "
                                       f"did you mean {q.value:g} deg?")
+    if reads_as_g(q):
+        return _g_doubt(path, q)
     if q.dimension == "frequency" and q.to_si() > MAX_FREQUENCY:
         return Problem(path, str(q), f"{_written(q)}: above {MAX_FREQUENCY:g} Hz; if it is an "
                                      f"angular frequency in rad/s, write "
@@ -81,6 +127,32 @@ def body_doubts(entry, path):
         if doubt is not None:
             doubts.append(doubt._replace(path=f"{path}.{key}"))
     return doubts
+
+
+def levels_doubt(levels, path):
+    """The doubt of a list of acceleration levels (``[(dotted path, Quantity)]``, e.g. the
+    ``levels: {pga: ...}`` of a bodies file at ``path``), or None: once, at the first bare
+    level that reads like g, unless the list is written in m/s^2 (:func:`levels_read_in_si`)."""
+    doubted = [(where, q) for where, q in levels if reads_as_g(q)]
+    if not doubted or levels_read_in_si([q for _, q in levels]):
+        return None
+    doubt = _g_doubt(*doubted[0])
+    more = len(doubted) - 1
+    return doubt if not more else doubt._replace(
+        message=f"{doubt.message} (and {more} more value{'s' * (more > 1)} of {path})")
+
+
+def glob_notes(path, pattern, found, skipped):
+    """What a record glob (``pattern`` at ``path``) leaves out of the folders of the files it
+    ``found``: the files ``skipped`` (``sweep.io.files.find_files``), named; [] or one
+    :class:`Problem`."""
+    if not skipped:
+        return []
+    folders = "the same folder" if len({Path(p).parent for p in found}) < 2 else "their folders"
+    return [Problem(path, pattern, f"takes {len(found)} file{'s' * (len(found) != 1)} and "
+                                   f"leaves out {len(skipped)} "
+                                   f"other{'s' * (len(skipped) != 1)} of {folders}: "
+                                   f"{named(skipped)}")]
 
 
 def _no_sliding(mu):

@@ -14,7 +14,6 @@ the normalized levels they are (CF units ``1``), and for an axis written wholly 
 (``deg``, ``deg/s``: :data:`AS_WRITTEN`), whose numbers are kept as written.  Values that are
 valid but likely not what was meant (``sweep.io.plausibility``) are warned of once per axis.
 """
-import glob
 import re
 import sys
 from dataclasses import dataclass
@@ -29,8 +28,11 @@ from pydantic import (AfterValidator, BeforeValidator, Field, ValidationError, W
 
 from ..runner import grid
 from . import units
-from .plausibility import scene_doubts
-from .scene_schema import load_scene, resolve_scene
+from .files import find_files, named
+from .plausibility import ReadsAsG, glob_notes, levels_read_in_si, scene_doubts
+from .scene_schema import (Body, Contact, Initial, NoMotion, PulseMotion, RecordMotion,
+                           SineMotion, Solver, SweepMotion, SyntheticMotion, load_scene,
+                           resolve_scene)
 from .problems import (MISSING, FieldError, FileProblems, Problem, closest, join_path,
                        validation_problems, warn)
 from .scene_schema import StrictModel
@@ -402,19 +404,23 @@ def _axis(name, spec, path, scene, problems):
     return None if len(problems) > before else result
 
 
-def _record_glob(spec, path, base_dir, problems):
-    """The files matching ``{glob: pattern}`` (relative to the study's folder), sorted, as a
-    list of paths as they will be written in the cells' scenes; None after a problem."""
+def _record_glob(spec, path, base_dir, problems, notes):
+    """The files matching ``{glob: pattern}`` (relative to the study's folder; the extension in
+    any case, ``files.find_files``), sorted, as a list of paths as they will be written in the
+    cells' scenes; None after a problem.  The files of their folders it skips are put in
+    ``notes``."""
     pattern = spec["glob"]
     if set(spec) != {"glob"} or not isinstance(pattern, str) or not pattern.strip():
         problems.append(Problem(path, spec, "a record glob is {glob: 'folder/*.AT2'} alone"))
         return None
-    found = sorted(p for p in glob.glob(pattern, root_dir=base_dir, recursive=True)
-                   if (Path(base_dir) / p).is_file())
+    found, skipped = find_files(pattern, base_dir)
     if not found:
+        held = f"; the folder holds {named(skipped)}" if skipped else ""
         problems.append(Problem(join_path(path, "glob"), pattern,
-                                f"matches no file (relative to {Path(base_dir).resolve()})"))
+                                f"matches no file (relative to {Path(base_dir).resolve()})"
+                                + held))
         return None
+    notes += glob_notes(join_path(path, "glob"), pattern, found, skipped)
     if len(found) > MAX_AXIS_VALUES:
         problems.append(Problem(join_path(path, "glob"), pattern,
                                 f"matches {len(found)} files, more than {MAX_AXIS_VALUES}"))
@@ -481,17 +487,94 @@ def _numeric_axis(name, values, unit, allowed, path, problems):
                 _long_name(name, found, rel), unit or (kept or ""), found)
 
 
+# Names people write for an axis, and the axis they mean ("did you mean"); keys lower case
+SYNONYMS = {"height": "H", "breadth": "B", "width": "B", "size_factor": "size",
+            "b/h": "b_over_h", "aspect_ratio": "b_over_h", "slenderness": "b_over_h",
+            "friction": "mu", "records": "record", "seeds": "seed", "freq": "frequency",
+            "scale_factor": "scale"}
+_SECTIONS = {"body": Body, "contact": Contact, "initial": Initial, "solver": Solver}
+MOTIONS = {"none": NoMotion, "sine": SineMotion, "sweep": SweepMotion, "record": RecordMotion,
+           "pulse": PulseMotion, "synthetic": SyntheticMotion}
+
+
+def _meant_axis(name):
+    """The axis (or dotted scene path) an unknown axis name likely means, or None: the same
+    name in other case (``PGA``, ``h``), a synonym (``height`` -> ``H``), a key of a scene
+    section (``theta`` -> ``initial.theta``, ``magnitude`` ->
+    ``excitation.horizontal.magnitude``), else the closest name or synonym (``hieght``)."""
+    text = str(name)
+    same = [axis for axis in grid.AXES if axis.lower() == text.lower()]
+    if len(same) == 1:
+        return same[0]
+    if text.lower() in SYNONYMS:
+        return SYNONYMS[text.lower()]
+    for section, model in _SECTIONS.items():
+        if text in model.model_fields:
+            return f"{section}.{text}"
+    if any(text in model.model_fields for model in MOTIONS.values()) and text != "kind":
+        return f"excitation.horizontal.{text}"
+    close = closest(text, [*grid.AXES, *SYNONYMS])
+    return SYNONYMS.get(close, close)
+
+
 def _axis_name_ok(name, path, problems):
     if name in grid.AXES:
         return True
     if isinstance(name, str) and "." in name and name.split(".")[0] in grid.SCENE_SECTIONS:
         return True
-    close = closest(name, grid.AXES)
+    close = _meant_axis(name)
     hint = f"did you mean '{close}'? " if close else ""
     problems.append(Problem(path, name, f"unknown axis; {hint}axes are "
                                         f"{', '.join(grid.AXES)} or a dotted scene path "
                                         "such as excitation.horizontal.f_stop"))
     return False
+
+
+def _instead(field, kind, component):
+    """What to vary instead of ``field``, which a motion of ``kind`` lacks; or ''."""
+    if field in ("name", "path"):
+        return (f"a record axis needs scene.excitation.{component} of kind record "
+                "(bundled names, paths or {glob: ...})")
+    if field == "amplitude" and kind in ("record", "synthetic"):
+        scale = "scale" if component == "horizontal" else "excitation.vertical.scale"
+        return (f"scale it with an axis {scale} (a factor on its samples)" +
+                (", pga or pgv (the peak it is scaled to)" if component == "horizontal" else
+                 " or scale_with: horizontal"))
+    if field in ("scale", "pga", "pgv") and kind in ("sine", "sweep", "pulse"):
+        return "vary its amplitude instead (axis amplitude, e.g. {values: [0.1, 0.2], unit: g})"
+    if field == "seed" and kind == "record":
+        return "an ensemble of records is an axis record (names, paths or {glob: ...})"
+    if field == "phase" and kind == "synthetic":
+        return "its noise is drawn by seed (an axis seed)"
+    if kind == "none":
+        return f"give scene.excitation.{component} a kind"
+    return ""
+
+
+def _fits_scene(name, path, scene, problems):
+    """False (a problem appended) when an axis sets a key that the base scene's motion does
+    not have: an amplitude axis on a record (scale, pga or pgv scale it), a pga axis on a
+    sine, a record axis on a sine.  A motion of unknown or missing kind is left to the scene
+    check."""
+    excitation = scene.get("excitation")
+    for target in grid.targets(name):
+        section, component, field = (target.split(".") + ["", ""])[:3]
+        if section != "excitation" or component not in ("horizontal", "vertical") or \
+                not field or target.count(".") != 2 or not isinstance(excitation, dict):
+            continue
+        ground = excitation.get(component)
+        kind = "none" if ground == "none" else ground.get("kind") if isinstance(ground, dict) \
+            else None
+        model = MOTIONS.get(kind) if isinstance(kind, str) else None
+        if model is None or field in model.model_fields:
+            continue
+        instead = _instead(field, kind, component)
+        takes = ", ".join(f for f in model.model_fields if f != "kind")
+        problems.append(Problem(path, name, f"sets excitation.{component}.{field}, which a "
+                                            f"{kind} motion does not have; "
+                                            + (instead or f"it takes {takes or 'no key'}")))
+        return False
+    return True
 
 
 def _conflicts(axes, problems):
@@ -714,6 +797,9 @@ def cell_problems(study, limit=50, doubts=None):
             axis = _blame(study, doubt.path)
             if axis is not None and axis.name in grid.COMPUTED:
                 continue  # a value computed in metres, not a bare number written
+            if isinstance(doubt, ReadsAsG) and axis is not None and \
+                    levels_read_in_si(axis.values):
+                continue  # bare numbers of 2 and more: the axis is written in m/s^2
             doubt = _located(study, index, doubt)
             doubted.setdefault(_INDEX.sub("", doubt.path), (doubt, set()))[1].add(doubt.path)
     for path, (doubt, paths) in doubted.items():
@@ -770,7 +856,8 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
         Overrides the study's ``output``.
     check_cells : bool
         Also check the cells' scenes (:func:`cell_problems`) and warn of the values likely
-        not meant (``InputWarning``, once per axis).
+        not meant (``InputWarning``, once per axis) and of the files of a record glob's
+        folders that it leaves out.
     max_cells : int or None
         Refuse a grid of more cells (a problem at ``grid``); 0 or None: no limit.
 
@@ -813,22 +900,25 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
     if not isinstance(out, (str, Path)) or not str(out).strip():
         out = f"{OUTPUT_DIR}/{name}.nc"
 
-    axes = {}
+    axes, notes = {}, []  # notes: what record globs leave out, warned of
     spec = raw.get("grid")
     if isinstance(spec, dict) and spec:
         for axis_name, axis_spec in spec.items():
             path = join_path("grid", axis_name)
             if axis_name == "record" and isinstance(axis_spec, dict) and "glob" in axis_spec:
-                axis_spec = _record_glob(axis_spec, path, base_dir, problems)
+                axis_spec = _record_glob(axis_spec, path, base_dir, problems, notes)
                 if axis_spec is None:
                     continue
-            if _axis_name_ok(axis_name, path, problems):
+            if _axis_name_ok(axis_name, path, problems) and \
+                    _fits_scene(axis_name, path, scene, problems):
                 axis = _axis(axis_name, axis_spec, path, scene, problems)
                 if axis is not None:
                     axes[axis_name] = axis
         if "b_over_h" in spec and "H" in spec:
             problems.append(Problem("grid.b_over_h", spec["b_over_h"],
-                                    "b_over_h sets H from B: it cannot go with an H axis"))
+                                    "b_over_h keeps B and sets H = B/(b/h), so an H axis "
+                                    "conflicts with it: vary B beside b_over_h, or size (a "
+                                    "factor on B and H)"))
         else:
             _conflicts(list(spec), problems)
     groups = _zip(raw.get("zip"), axes, list(spec) if isinstance(spec, dict) else [],
@@ -849,5 +939,5 @@ def load_study(source, *, text=None, output=None, check_cells=True, max_cells=MA
         problems += cell_problems(study, doubts=doubts)
     if problems:
         raise FileProblems(problems, src)
-    warn(doubts)
+    warn(notes + doubts if check_cells else [])
     return study

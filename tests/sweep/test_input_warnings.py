@@ -86,7 +86,7 @@ def test_frequencies_and_friction():
     assert set(_doubts(_sine(frequency="150 Hz"))) == {
         "excitation.horizontal.frequency"}  # a unit written does not make 150 Hz plausible
     sweep_ = {"body": BLOCK, "excitation": {"horizontal": {
-        "kind": "sweep", "amplitude": 1.0, "f_start": 1, "f_stop": 628, "duration": 5}}}
+        "kind": "sweep", "amplitude": "1.0 m/s^2", "f_start": 1, "f_stop": 628, "duration": 5}}}
     assert set(_doubts(sweep_)) == {"excitation.horizontal.f_stop"}
     assert "write 99.95 Hz" in _doubts(sweep_)["excitation.horizontal.f_stop"]  # 628 / 2 pi
     friction = {"body": BLOCK, "contact": {"mu": 2.0, "mu_s": 40, "mu_k": 2.5, "mu_edge_s": 10,
@@ -190,6 +190,115 @@ def test_study_warns_once_per_axis_not_per_cell():
     assert sorted((p.path, p.value) for p in said) == [("grid.mu_s[1]", 3), ("grid.scale[1]", 9)]
     scale = next(p for p in said if p.path == "grid.scale[1]")
     assert scale.message.endswith("(and 2 more values of grid.scale)")  # 3.49 g and 4.18 g
+
+
+# --- bare accelerations that read like g ---------------------------------------------------
+
+def _g_message(value, written=None):
+    """The message of a bare acceleration ``value`` read as m/s^2, from g = 9.80665 m/s^2."""
+    return (f"{written or value} (a bare number is in m/s^2): {value / G:.3g} g; did you mean "
+            f"{value} g ({value * G:.3g} m/s^2)? write '{value} g' or '{value} m/s^2' to "
+            "silence this")
+
+
+def test_bare_pga_below_2_reads_like_g():
+    doubts = _doubts(_record(name="elcentro1940_ns", pga=0.4))
+    assert doubts == {"excitation.horizontal.pga": _g_message(0.4)}
+    # 0.4 m/s^2 is 0.0408 g; 0.4 g is 3.92 m/s^2
+    assert "0.0408 g" in doubts["excitation.horizontal.pga"]
+    assert "did you mean 0.4 g (3.92 m/s^2)?" in doubts["excitation.horizontal.pga"]
+
+
+@pytest.mark.parametrize("pga", ["0.4 g", "0.4 m/s^2", "400 gal", "40 cm/s^2", 3.9, 2.0, 2])
+def test_explicit_units_and_plausible_bare_pga_warn_of_nothing(pga):
+    assert _doubts(_record(name="elcentro1940_ns", pga=pga)) == {}
+
+
+@pytest.mark.parametrize("horizontal, doubted", [
+    ({"kind": "record", "name": "elcentro1940_ns", "pga": 1.99}, True),
+    ({"kind": "sine", "amplitude": 0.3, "frequency": 2.0}, True),             # an acceleration
+    ({"kind": "sine", "amplitude": "0.3 m/s", "frequency": 2.0}, False),      # a velocity
+    ({"kind": "sweep", "hold": "acceleration", "amplitude": 0.5, "f_start": 1, "f_stop": 2,
+      "duration": 3}, True),
+    ({"kind": "sweep", "hold": "velocity", "amplitude": 0.5, "f_start": 1, "f_stop": 2,
+      "duration": 3}, False),                                                  # pgv-like: m/s
+    ({"kind": "pulse", "shape": "rectangular", "amplitude": -0.5, "duration": 0.2}, True),
+    ({"kind": "pulse", "shape": "rectangular", "amplitude": 0, "duration": 0.2}, False),
+    ({"kind": "record", "name": "elcentro1940_ns", "pgv": 0.3}, False),       # velocity levels
+])
+def test_bare_accelerations_of_every_kind(horizontal, doubted):
+    doubts = _doubts({"body": dict(BLOCK), "excitation": {"horizontal": horizontal}})
+    key = "pga" if "pga" in horizontal else "amplitude"
+    assert set(doubts) == ({f"excitation.horizontal.{key}"} if doubted else set())
+
+
+def test_bare_pga_of_a_synthetic_motion_and_of_a_vertical_record():
+    synthetic = {"kind": "synthetic", "magnitude": 6.5, "distance": "20 km", "vs30": "760 m/s",
+                 "pga": 0.5}
+    assert _doubts({"body": dict(BLOCK), "excitation": {"horizontal": synthetic}}) == {
+        "excitation.horizontal.pga": _g_message(0.5)}
+    pair = _pair({"pga": 0.2}, {"kind": "record", "name": "elcentro1940_ns", "pga": "0.5 g"})
+    assert _doubts(pair) == {"excitation.vertical.pga": _g_message(0.2)}
+
+
+def _pga_study(values):
+    return {"scene": {"body": dict(BLOCK), "excitation": {"horizontal": {
+        "kind": "record", "name": "elcentro1940_ns"}}, "solver": {"t_end": 0.1}},
+        "grid": {"pga": values}}
+
+
+@pytest.mark.parametrize("values, said", [
+    ([0.1, 0.2, 0.4], [("grid.pga[0]", _g_message(0.1) + " (and 2 more values of grid.pga)")]),
+    ({"start": 0.1, "stop": 0.5, "num": 2}, [("grid.pga[0]", _g_message(
+        0.1, "0.1") + " (and 1 more value of grid.pga)")]),
+    ([0.5, 1, 2, 4], []),                         # a bare 2 and 4: the axis is in m/s^2
+    ({"values": [0.1, 0.2], "unit": "g"}, []),
+    (["0.1 g", "3 m/s^2"], []),
+])
+def test_study_pga_axis_warned_of_once(values, said):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        load_study(_pga_study(values))
+    assert [(w.message.problem.path, w.message.problem.message) for w in caught
+            if w.category is InputWarning] == said
+
+
+def _survey(levels):
+    return {"site": "yard", "bodies": [{"name": "s", "B": "20 cm", "H": "80 cm",
+                                        "overturned": True}],
+            "ensemble": {"motions": {"record": ["elcentro1940_ns"]}, "levels": {"pga": levels}}}
+
+
+@pytest.mark.parametrize("levels, said", [
+    ({"start": 0.1, "stop": 1.6, "num": 5},
+     [("ensemble.levels.pga.start", _g_message(0.1) + " (and 1 more value of "
+                                                      "ensemble.levels.pga)")]),
+    ([0.1, 0.5], [("ensemble.levels.pga[0]", _g_message(0.1) + " (and 1 more value of "
+                                                               "ensemble.levels.pga)")]),
+    ({"values": [0.3, "5 m/s^2"]}, [("ensemble.levels.pga.values[0]", _g_message(0.3))]),
+    ({"start": 0.5, "stop": 16, "num": 5}, []),   # a bare 16: the levels are in m/s^2
+    ({"start": "0.1 g", "stop": "1.6 g", "num": 5}, []),
+    ({"start": "1 m/s^2", "stop": "16 m/s^2", "num": 14}, []),
+])
+def test_bodies_file_levels_warned_of_once(levels, said):
+    from sweep.io.bodies_schema import load_survey
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        load_survey(_survey(levels))
+    assert [(w.message.problem.path, w.message.problem.message) for w in caught
+            if w.category is InputWarning] == said
+
+
+def test_scene_command_says_a_bare_pga_reads_like_g(tmp_path):
+    (tmp_path / "statue.yaml").write_text(
+        "body: {B: 20 cm, H: 80 cm}\nexcitation: {horizontal: {kind: record, name: "
+        "elcentro1940_ns, pga: 0.4}}\nsolver: {t_end: 0.1}\n")
+    done = subprocess.run([PY, "-m", "sweep.scene", "statue.yaml", "--summary"], cwd=tmp_path,
+                          env=cli_env(), capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert [line for line in done.stderr.splitlines() if "warning" in line] == [
+        "warning: excitation.horizontal.pga: " + _g_message(0.4)]
+    assert "PGA 0.0408 g" in done.stdout  # what was run: 0.4 m/s^2, as written
 
 
 # --- axes in degrees ------------------------------------------------------------------------

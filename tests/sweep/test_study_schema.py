@@ -143,3 +143,61 @@ def test_axis_length_and_repeats():
     assert {p.path: p.message for p in info.value.problems} == {
         "grid.amplitude.num": "must be an integer >= 1, at most 1000000",
         "grid.mu": "values repeat: 0.2"}
+
+
+# --- axes that fit the scene: hints --------------------------------------------------------
+
+RECORD_SCENE = {"body": {"B": 0.2, "H": 0.6},
+                "excitation": {"horizontal": {"kind": "record", "name": "elcentro1940_ns"}}}
+SINE_SCENE = {"body": {"B": 0.2, "H": 0.6},
+              "excitation": {"horizontal": {"kind": "sine", "amplitude": "1 west",
+                                            "frequency": 2.0}}}
+
+
+def _problems(scene, grid):
+    with pytest.raises(FileProblems) as info:
+        load_study({"scene": scene, "grid": grid})
+    return [(p.path, p.message) for p in info.value.problems]
+
+
+def test_amplitude_axis_on_a_record_suggests_scale_pga_pgv():
+    """One problem at the axis, not one 'unknown key' per value."""
+    [(path, message)] = _problems(RECORD_SCENE, {"amplitude": [1, 2, 3]})
+    assert path == "grid.amplitude"
+    assert message == ("sets excitation.horizontal.amplitude, which a record motion does not "
+                       "have; scale it with an axis scale (a factor on its samples), pga or "
+                       "pgv (the peak it is scaled to)")
+
+
+@pytest.mark.parametrize("scene, grid, path, words", [
+    (SINE_SCENE, {"pga": [1, 2]}, "grid.pga", ["a sine motion does not have", "amplitude"]),
+    (SINE_SCENE, {"scale": [1, 2]}, "grid.scale", ["amplitude"]),
+    (SINE_SCENE, {"record": ["elcentro1940_ns"]}, "grid.record", ["of kind record"]),
+    (RECORD_SCENE, {"seed": [1, 2]}, "grid.seed", ["an axis record"]),
+    (RECORD_SCENE, {"frequency": [1, 2]}, "grid.frequency",
+     ["a record motion does not have", "it takes start, duration, scale, pga, pgv"]),
+    (RECORD_SCENE, {"excitation.horizontal.amplitude": [1]},
+     "grid.excitation.horizontal.amplitude", ["scale", "pga", "pgv"]),
+])
+def test_axes_that_the_scenes_motion_lacks(scene, grid, path, words):
+    [(found, message)] = _problems(scene, grid)
+    assert found == path and all(word in message for word in words), message
+
+
+@pytest.mark.parametrize("name, meant", [
+    ("height", "H"), ("Height", "H"), ("hieght", "H"), ("width", "B"), ("h", "H"),
+    ("PGA", "pga"), ("slenderness", "b_over_h"), ("theta", "initial.theta"),
+    ("magnitude", "excitation.horizontal.magnitude"), ("amplitud", "amplitude"),
+])
+def test_unknown_axis_did_you_mean(name, meant):
+    [(path, message)] = _problems(SINE_SCENE, {name: [0.5, 1.0]})
+    assert path == f"grid.{name}" and f"unknown axis; did you mean '{meant}'?" in message
+
+
+def test_H_with_b_over_h_says_to_vary_B_or_size():
+    [(path, message)] = _problems(SINE_SCENE, {"H": [0.5, 1.0], "b_over_h": [0.2, 0.3]})
+    assert path == "grid.b_over_h"
+    assert message == ("b_over_h keeps B and sets H = B/(b/h), so an H axis conflicts with "
+                       "it: vary B beside b_over_h, or size (a factor on B and H)")
+    assert load_study({"scene": SINE_SCENE, "grid": {"B": [0.1, 0.2],
+                                                     "b_over_h": [0.2, 0.3]}}).n_cells == 4
