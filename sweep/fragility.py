@@ -18,7 +18,7 @@ from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
 from .probability.fragility import (DEFAULT_BINS, INTENSITY_MEASURES, FragilityError,
-                                    default_levels, describe_group, group_coords,
+                                    counted, default_levels, describe_group, group_coords,
                                     group_indices, output_path)
 from .probability.intervals import METHODS
 
@@ -202,7 +202,8 @@ def format_table(frag):
              f"{attrs['intensity_measure']}{units}, members over {attrs['ensemble_dimensions']}"
              f" (up to {members} per {'bin' if level == 'none' else 'level'}), "
              + (f"levels {level}" if level != "none" else attrs["im_bins"]),
-             f"{attrs['failed_cells']} of {attrs['cells']} cells failed and are left out; "
+             f"{attrs['failed_cells']} of {counted(int(attrs['cells']), 'cell')} failed and "
+             "left out; "
              f"{confidence} intervals of theta and beta: {attrs['fit_interval_method']}"]
     rows = [("group", f"theta{units}", f"{confidence} interval", "beta",
              f"{confidence} interval", "fit")]

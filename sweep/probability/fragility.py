@@ -100,6 +100,44 @@ FRAGILITY_VARIABLES = {
 }
 
 
+# Scene sections whose axes change the body or how it is simulated: each of their values is
+# another body (a group of its own), never a member of an ensemble of motions
+BODY_SECTIONS = ("body", "contact", "initial", "solver")
+
+
+def _study_axes(ds, dim):
+    """The study's axes along dimension ``dim``: each coordinate's ``study_axis`` (its name in
+    a dataset without it), the dimension's own name if it has no coordinate."""
+    return [c.attrs.get("study_axis", name) for name, c in ds.coords.items()
+            if c.dims == (dim,)] or [dim]
+
+
+def _sections(axis):
+    """The scene sections an axis of a study sets (``grid.AXES`` or a dotted path); () for a
+    name the project does not know."""
+    from ..runner import grid
+
+    if axis in grid.AXES or "." in axis:
+        return {target.split(".")[0] for target in grid.targets(axis)}
+    return set()
+
+
+def body_dimension(ds, dim):
+    """True when dimension ``dim`` of a study's dataset varies the body or its simulation
+    (``B``, ``b_over_h``, ``size``, ``mu``, ``initial.theta``, ...): its cells are other
+    bodies, never members of an ensemble."""
+    return any(_sections(axis) & set(BODY_SECTIONS) for axis in _study_axes(ds, dim))
+
+
+def ensemble_dimensions(ds, levels=None):
+    """The dimensions of a study's dataset whose cells can be the members of an ensemble:
+    those of the motion (``record``, ``seed``, ``phase``, a scenario's ``magnitude``, ...),
+    but for the levels (``levels`` and the dimensions of ``LEVEL_NAMES``)."""
+    dims = ds["outcome"].dims if "outcome" in ds.variables else ()
+    return [d for d in dims if d != levels and d not in LEVEL_NAMES
+            and not body_dimension(ds, d)]
+
+
 class FragilityError(ValueError):
     """A request the dataset cannot answer (an unknown dimension, a missing IM); one line."""
 
@@ -132,6 +170,15 @@ def validate_request(ds, over, im, levels):
                                  f"dimensions are {listed}")
     if not over:
         raise FragilityError("give at least one ensemble dimension (--over)")
+    for name in over:
+        if body_dimension(ds, name):
+            present = ensemble_dimensions(ds, levels)
+            raise FragilityError(
+                f"'{name}' is not an ensemble dimension: its cells are other bodies, each a "
+                "group of its own; " + (f"the ensemble dimensions of this dataset: "
+                                         f"{', '.join(present)}" if present else
+                                         "this dataset has no ensemble dimension (record, "
+                                         "seed or another axis of the motion)"))
     if len(set(over)) < len(over):
         raise FragilityError(f"an ensemble dimension is given twice: {', '.join(over)}")
     if levels in over:
@@ -398,8 +445,8 @@ def _global_attrs(ds, over, im, levels, bins, confidence, interval, fit_interval
     interval_text = {"wilson": "Wilson score interval (Wilson 1927)",
                      "exact": "exact Clopper-Pearson interval (Clopper & Pearson 1934)"}
     fit_text = {"bootstrap": f"bias-corrected and accelerated bootstrap over the ensemble "
-                             f"members ({replicates} replicates, seed {seed}), each member "
-                             f"resampled with all its levels",
+                             f"members ({counted(replicates, 'replicate')}, seed {seed}), "
+                             "each member resampled with all its levels",
                 "delta": "delta method on ln theta and ln beta from the GLM covariance"}
     attrs = {
         "Conventions": cf.CONVENTIONS,
@@ -422,8 +469,13 @@ def _global_attrs(ds, over, im, levels, bins, confidence, interval, fit_interval
         "cells": total,
     }
     if levels is None:
-        attrs["im_bins"] = f"{bins} bins of equal width in ln {im}"
+        attrs["im_bins"] = f"{counted(bins, 'bin')} of equal width in ln {im}"
     return attrs
+
+
+def counted(n, noun):
+    """``1 motion``, ``3 motions``: a count and its noun, plural but for one."""
+    return f"{n} {noun}{'s' * (n != 1)}"
 
 
 def output_path(source, im):
@@ -433,19 +485,25 @@ def output_path(source, im):
     return source.with_name(f"{source.stem}_fragility_{im}.nc")
 
 
+COORDINATE_DIGITS = 6  # significant digits of a coordinate in a label: 0.7, not 0.7000000000000001
+
+
 def describe_group(coords):
     """A readable name of a group from ``{name: (value, units)}``: "B 0.2 m × H 0.6 m
-    (b/h 0.333)" for a body, else "name value units" joined by commas."""
+    (b/h 0.333)" for a body, else "name value units" joined by commas; coordinates to
+    ``COORDINATE_DIGITS`` significant digits (float noise dropped, values kept apart)."""
     values = {name: value for name, (value, _) in coords.items()}
     parts, rest = [], dict(coords)
+    digits = COORDINATE_DIGITS
     if "B" in values and ("H" in values or "b_over_h" in values):
         breadth = float(values["B"])
         height = float(values["H"]) if "H" in values else breadth / float(values["b_over_h"])
-        parts.append(f"B {breadth:.3g} m × H {height:.3g} m (b/h {breadth / height:.3g})")
+        parts.append(f"B {breadth:.{digits}g} m × H {height:.{digits}g} m "
+                     f"(b/h {breadth / height:.3g})")
         for name in ("B", "H", "b_over_h"):
             rest.pop(name, None)
     for name, (value, units) in rest.items():
-        text = f"{value:.4g}" if isinstance(value, (float, np.floating)) else str(value)
+        text = f"{value:.{digits}g}" if isinstance(value, (float, np.floating)) else str(value)
         unit = "" if units in ("", "1", None) else f" {units}"
         parts.append(f"{name} {text}{unit}")
     return ", ".join(parts) or "all cells"

@@ -252,6 +252,9 @@ def _bad_inputs(tmp_path, striped_path):
          "is a file, not a folder"),
         ([striped_path, "--over", "seed", "--im", "pga", "-o", "/proc/fragility.png"],
          "not writable"),
+        ([striped_path, "--over", "B", "--im", "pga"],
+         "'B' is not an ensemble dimension: its cells are other bodies, each a group of its "
+         "own; the ensemble dimensions of this dataset: seed"),
     ]
 
 
@@ -283,3 +286,59 @@ def test_api_refuses_what_the_dataset_cannot_answer():
         fragility(ds, ["pga"], "pga", "pga")
     with pytest.raises(FragilityError, match="at least one ensemble dimension"):
         fragility(ds, [], "pga", "pga")
+
+
+def _study_dataset():
+    """Dims as ``sweep.run`` writes them for grid {b_over_h, excitation.horizontal.magnitude,
+    size, pga, seed}: coordinates carry the study's axis names (``study_axis``)."""
+    ds, _ = striped_study()
+    ds = ds.isel(H=0, drop=True).rename({"B": "b_over_h"}).expand_dims(
+        magnitude=[6.0, 7.0], size_factor=[1.0]).transpose("b_over_h", "magnitude",
+                                                           "size_factor", "pga", "seed")
+    for dim, axis in (("b_over_h", "b_over_h"), ("magnitude", "excitation.horizontal.magnitude"),
+                      ("size_factor", "size"), ("pga", "pga"), ("seed", "seed")):
+        ds[dim].attrs["study_axis"] = axis
+    return ds
+
+
+@pytest.mark.parametrize("over, refused", [
+    (["b_over_h"], "b_over_h"), (["seed", "size_factor"], "size_factor"),
+    (["seed", "magnitude"], None), (["seed"], None)])
+def test_only_ensemble_dimensions_are_members(tmp_path, capsys, over, refused):
+    path = tmp_path / "study.nc"
+    _study_dataset().to_netcdf(path)
+    argv = [path, *[a for name in over for a in ("--over", name)], "--im", "pga",
+            "--replicates", "20"]
+    status, out, err = _run(argv, capsys)
+    if refused is None:
+        assert (status, err) == (0, "")
+        return
+    assert status == 2 and out == ""
+    assert err.splitlines() == [
+        f"{path}: '{refused}' is not an ensemble dimension: its cells are other bodies, each "
+        "a group of its own; the ensemble dimensions of this dataset: magnitude, seed"]
+
+
+def test_a_dataset_without_ensemble_dimensions_says_so():
+    ds = _study_dataset().isel(magnitude=0, seed=0, drop=True)
+    with pytest.raises(FragilityError, match=r"'b_over_h' is not an ensemble dimension: .*; "
+                                             r"this dataset has no ensemble dimension"):
+        fragility(ds, ["b_over_h"], "pga", "pga")
+
+
+def test_labels_and_counts_read_as_written():
+    """Coordinates without float noise in the group labels (0.1 + 0.2 m is 0.3 m); one
+    replicate, one bin, one cell: singular."""
+    from sweep.fragility import format_table
+    from sweep.probability.fragility import counted, describe_group
+    assert describe_group({"B": (0.1 + 0.2, "m"), "H": (0.6, "m"),
+                           "mu": (0.7000000000000001, "1")}) == \
+        "B 0.3 m × H 0.6 m (b/h 0.5), mu 0.7"
+    assert describe_group({"mu": (0.123456789, "1")}) == "mu 0.123457"  # 6 digits
+    assert [counted(n, "motion") for n in (0, 1, 2)] == ["0 motions", "1 motion", "2 motions"]
+    ds, _ = striped_study(failed_fraction=0.0)
+    one = ds.isel(B=[0], pga=[0], seed=[0])
+    frag = fragility(one, ["seed"], "pga", None, bins=1, replicates=1)
+    assert "(1 replicate, seed 0)" in frag.attrs["fit_interval_method"]
+    assert frag.attrs["im_bins"] == "1 bin of equal width in ln pga"
+    assert "0 of 1 cell failed and left out" in format_table(frag)
