@@ -2,8 +2,9 @@
 what its text says, reads flags by name, and is stored with its outputs.
 
 The notebook is executed with nbclient from a copy in a temporary folder, which is also its
-working folder: the record file it writes lands there, and the stored notebook is never
-rewritten.  Cells whose printed lines are checked carry a tag (cell metadata, not shown).
+working folder: the record file it writes goes to a temporary folder of its own, never beside
+the notebook, and the stored notebook is never rewritten.  Cells whose printed lines are
+checked carry a tag (cell metadata, not shown).
 """
 import base64
 import importlib.util
@@ -24,6 +25,7 @@ STUDY_CELLS = 17 * 12 * 2  # amplitude x frequency x b_over_h of section 3
 MAX_BYTES = 1_500_000  # the stored notebook, images included, reads quickly on GitHub
 CELL_TIMEOUT = 300  # s; the whole notebook takes about 10 s once the kernel is compiled
 PREFIX_TAG = "test_prefix"
+MOTION_TAG = "test_motion_file"
 
 
 @pytest.fixture(scope="module")
@@ -39,6 +41,14 @@ def executed(tmp_path_factory):
     probe = nbformat.v4.new_code_cell("import sys\nprint(sys.prefix)")
     probe.metadata["tags"] = [PREFIX_TAG]
     nb.cells.append(probe)
+    # the record file of section 2, read while the kernel (and its temporary folder) lives
+    motion = nbformat.v4.new_code_cell(
+        "print(motion_file.resolve())\n"
+        "rows = [line.split() for line in motion_file.read_text().splitlines()\n"
+        "        if not line.startswith('#')]\n"
+        "print(len(rows), sorted({len(row) for row in rows}))")
+    motion.metadata["tags"] = [MOTION_TAG]
+    nb.cells.append(motion)
     # "python3": jupyter_client starts the kernel with this interpreter (sys.executable)
     client = nbclient.NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
                                      resources={"metadata": {"path": str(tmp)}})
@@ -96,11 +106,11 @@ def test_one_scene_verdict(executed):
 def test_own_record(executed):
     # section 2: a two-column file in gal, as written it stands, scaled to 0.6 g it overturns
     nb, tmp = executed
-    motion = tmp / "my_motions" / "burst_2hz.txt"
-    assert motion.is_file()
-    rows = [line.split() for line in motion.read_text().splitlines()
-            if not line.startswith("#")]
-    assert len(rows) == 601 and {len(row) for row in rows} == {2}
+    path, shape = _stdout(nb, MOTION_TAG).splitlines()
+    assert Path(path).name == "burst_2hz.txt" and tmp not in Path(path).parents
+    assert shape == "601 [2]"  # rows, columns
+    assert not Path(path).exists()  # its temporary folder went with the kernel
+    assert sorted(p.name for p in tmp.iterdir()) == [NOTEBOOK.name]  # nothing beside it
     lines = _stdout(nb, "own_record").splitlines()
     assert lines[0].startswith("as written (PGA 2.9") and "stood" in lines[0]
     assert lines[-1].startswith("scaled to PGA 0.6 g: overturned at")
