@@ -21,8 +21,12 @@ The decorated ``main`` returns the exit status instead of a traceback when
 * the user presses Ctrl-C: one line ``interrupted`` on stderr, status 130 = 128 + SIGINT.
 
 It prints an input file's values that are likely not meant (``InputWarning``) as one line
-each, ``warning: <path>: <message>``.  ``EPILOG`` ends every command's ``--help``: the units
-of quantities and where every key of the input files is described.
+each, ``warning: <path>: <message>``.
+
+``argument_parser`` makes a command's ``argparse`` parser: named as it was called (``rigid-scene`` as
+the console script, ``python -m sweep.scene`` otherwise; :func:`program`), its description
+without reStructuredText markup (:func:`plain`), and ``EPILOG`` (the units of quantities and
+where every key of the input files is described) for the commands that read quantities.
 
 ``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``; a long
 list can be kept on one line, so that a reader sees the keys before the arrays.
@@ -31,8 +35,10 @@ import functools
 import json
 import math
 import os
+import re
 import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -45,6 +51,12 @@ EPILOG = (f"A quantity is a number in SI units (m, s, rad, Hz) or a string '<num
           f"units: {listing()} (west, v_H and alpha: times the body's (B/H) g, single-shock "
           "overturning velocity and slenderness angle).  Every key of scene, study and bodies "
           "files, with its units and default: docs/schema.md.")
+SCRIPTS = {"sweep.run": "rigid-run", "sweep.scene": "rigid-scene", "sweep.plot": "rigid-plot",
+           "sweep.estimate": "rigid-estimate", "sweep.fragility": "rigid-fragility"}
+"""The console scripts of pyproject.toml's [project.scripts], by the module they run."""
+_ROLE = re.compile(r":[a-z]+(?::[a-z]+)?:`(~?)([^`]*)`")  # :func:`~a.b` (the ~: b alone)
+_LITERAL = re.compile(r"``(.*?)``", re.DOTALL)
+_INTERPRETED = re.compile(r"(?<![`\w])`([^`]+)`_{0,2}(?!`)")  # `text`, `link`_
 
 
 def _show_input_warning(show):
@@ -78,6 +90,42 @@ def command(main):
     return guarded
 
 
+def program(module):
+    """The name a command shows (usage, errors): its console script's name (:data:`SCRIPTS`)
+    when ``sys.argv[0]`` is that script, else ``python -m <module>``."""
+    called = Path(sys.argv[0]).name if sys.argv and sys.argv[0] else ""
+    script = SCRIPTS.get(module)
+    if script and re.sub(r"(-script\.pyw?|\.exe)$", "", called) == script:
+        return script
+    return f"python -m {module}"
+
+
+def plain(text):
+    """``text`` (a docstring) as plain text for ``--help``: the reStructuredText roles
+    (``:func:`x```), double backticks, interpreted text and ``::`` of a literal block
+    reduced to what they quote."""
+    if not text:
+        return text
+    text = _ROLE.sub(lambda m: m[2].rsplit(".", 1)[-1] if m[1] else m[2], text)
+    text = _LITERAL.sub(r"\1", text)
+    text = _INTERPRETED.sub(r"\1", text)
+    return re.sub(r"(\S)::(\s*\n)", r"\1:\2", text)
+
+
+def argument_parser(module, description, quantities=False, lines=False):
+    """The ``argparse.ArgumentParser`` of the command run as ``python -m <module>``: named by
+    :func:`program`, its ``description`` made :func:`plain` (its lines kept as written with
+    ``lines``, else filled), and ended by :data:`EPILOG` where the command reads
+    ``quantities`` (a scene, study or bodies file, or options in units)."""
+    import argparse
+
+    return argparse.ArgumentParser(
+        prog=program(module), description=plain(description),
+        epilog=EPILOG if quantities else None,
+        formatter_class=argparse.RawDescriptionHelpFormatter if lines else
+        argparse.HelpFormatter)
+
+
 def jsonable(value):
     """``value`` with non-finite floats as None, numpy scalars and arrays as Python values."""
     if isinstance(value, dict):
@@ -108,16 +156,14 @@ def print_json(value, one_line_per_key=False):
     print("}")
 
 
-def report_command(prog, description, report):
+def report_command(module, description, report):
     """A command ``main(argv=None)`` that prints ``report(ds)`` for each dataset it is given
-    (``python -m sweep.paper.rates RESULT.nc ...``)."""
-    import argparse
-
+    (``python -m sweep.paper.rates RESULT.nc ...``: ``module`` is ``sweep.paper.rates``)."""
     @command
     def main(argv=None):
-        parser = argparse.ArgumentParser(prog=prog, description=description)
-        parser.add_argument("result", nargs="+", help="dataset of a study (netCDF)")
-        args = parser.parse_args(argv)
+        said = argument_parser(module, description)
+        said.add_argument("result", nargs="+", help="dataset of a study (netCDF)")
+        args = said.parse_args(argv)
 
         import xarray as xr
 

@@ -17,13 +17,12 @@ figure per site (``FIG_<site>.png`` with several sites).  The simulations are ke
 ``results/<file stem>/`` beside the bodies file and reused while their inputs are unchanged;
 ``--write-study DIR`` only writes the studies, for ``python -m sweep.run`` on a cluster.
 """
-import argparse
 import csv
 import re
 import sys
 from pathlib import Path
 
-from .cli import EPILOG, command, print_json
+from .cli import argument_parser, command, print_json
 from .io.bodies_schema import load_bodies, load_survey  # noqa: F401  (load_bodies: one site)
 from .io.files import output_problems, replacing
 from .io.problems import MISSING, FileProblems, Problem, reported
@@ -33,8 +32,8 @@ EXIT_FAILED = 1
 
 
 def _parse(argv):
-    parser = argparse.ArgumentParser(
-        prog="python -m sweep.estimate", epilog=EPILOG,
+    parser = argument_parser(
+        "sweep.estimate", quantities=True,
         description="What bodies seen overturned and standing at sites tell of the peak ground "
                     "motion: the lower limits of PGA, PGV and PGD of Ishiyama (1982, Eqs. 14, "
                     "16, 18) and, with an ensemble of motions in the file, bounds at stated "

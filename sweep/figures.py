@@ -10,14 +10,13 @@ classify the overturnings of the sweeps of Fig. 11 once for Figs 11-16
 (``sweep.paper.classify``), and draw the figures (``sweep.plot``).  Scenes, classifications
 and figures are shared out among the ranks.  A line per stage on stderr says how long it took.
 """
-import argparse
 import contextlib
 import io
 import sys
 import time
 from pathlib import Path
 
-from .cli import command
+from .cli import argument_parser, command
 from .io.problems import EXIT_BAD_INPUT
 from .runner import mpi
 from .runner.progress import emit, format_seconds
@@ -199,7 +198,7 @@ def main(argv=None):
     import matplotlib
 
     matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
-    parser = argparse.ArgumentParser(prog="python -m sweep.figures", description=__doc__)
+    parser = argument_parser("sweep.figures", __doc__, lines=True)
     parser.add_argument("-o", "--output", default="figures", help="folder of the figures")
     args = parser.parse_args(argv)
     output = Path(args.output)

@@ -9,11 +9,10 @@ beside RESULT as ``<stem>_fragility_<im>.nc`` (``--dataset`` elsewhere); ``-o`` 
 or, with ``--kind map``, the two-parameter fragility over (PGA, PGV); ``--json`` prints every
 group, otherwise one line per group.
 """
-import argparse
 import sys
 from pathlib import Path
 
-from .cli import EPILOG, checked_type, command, positive_int, print_json
+from .cli import argument_parser, checked_type, command, positive_int, print_json
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
@@ -30,8 +29,8 @@ _confidence = checked_type(float, lambda v: 0.0 < v < 1.0, "strictly between 0 a
 
 
 def _parser():
-    parser = argparse.ArgumentParser(
-        prog="python -m sweep.fragility", epilog=EPILOG,
+    parser = argument_parser(
+        "sweep.fragility",
         description="Probabilities of overturning over a study's ensemble with confidence "
                     "intervals, lognormal fragility fits (median, beta and their intervals), "
                     "curves and (PGA, PGV) maps.")

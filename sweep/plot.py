@@ -12,7 +12,6 @@ datasets (:func:`misfit`, or a ``KeyError``/``ValueError`` of the drawing) is on
 stderr and exit status 2.  The backend is ``Agg``, chosen by :func:`main`, never on import of
 ``sweep.plots``.
 """
-import argparse
 import sys
 from contextlib import ExitStack
 from functools import partial
@@ -20,7 +19,7 @@ from pathlib import Path
 
 import yaml
 
-from .cli import EPILOG, command
+from .cli import argument_parser, command
 from .io.files import output_problems
 from .io.problems import EXIT_BAD_INPUT, FileProblems
 from .paper import classify
@@ -110,8 +109,7 @@ def main(argv=None):
     import matplotlib
 
     matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
-    parser = argparse.ArgumentParser(prog="python -m sweep.plot", epilog=EPILOG,
-                                     description="Draw a figure from a study's netCDF dataset.")
+    parser = argument_parser("sweep.plot", "Draw a figure from a study's netCDF dataset.")
     parser.add_argument("result", nargs="*", help="dataset written by python -m sweep.run "
                         f"(netCDF); none for {', '.join(sorted(WITHOUT_DATASET))}; one or "
                         f"more for {', '.join(sorted(SEVERAL))}")

@@ -9,12 +9,11 @@ dataset (DESIGN.md sections 5-7).
 The command parses its arguments, takes the communicator (``runner.mpi``) and hands over to
 ``runner.launch``, which plans, deals, computes and merges.
 """
-import argparse
 import math
 import sys
 import warnings
 
-from .cli import EPILOG, checked_type, command, positive_int
+from .cli import argument_parser, checked_type, command, positive_int
 from .io.problems import EXIT_BAD_INPUT
 
 EXIT_FAILED = 1
@@ -29,11 +28,10 @@ _cells = checked_type(int, lambda v: v >= 0, "a whole number >= 0 (0: no limit)"
 
 
 def parse_args(argv=None):
-    parser = argparse.ArgumentParser(
-        prog="python -m sweep.run", epilog=EPILOG,
-        description="Run a study (a base scene and axes to vary) into one netCDF dataset. "
-                    "Under mpiexec the cells are shared by the ranks; a killed run resumes "
-                    "from its part files when started again.")
+    parser = argument_parser(
+        "sweep.run", "Run a study (a base scene and axes to vary) into one netCDF dataset. "
+                     "Under mpiexec the cells are shared by the ranks; a killed run resumes "
+                     "from its part files when started again.", quantities=True)
     parser.add_argument("study", help="study file (YAML)")
     parser.add_argument("--dry-run", action="store_true",
                         help="check the study, print the cell count and an estimated run time")

@@ -1,20 +1,20 @@
 """``python -m sweep.scene SCENE.yaml [--json | --summary] [--plot out.png] [--animate out.gif]
 [--history out.nc]``: run one scene and show what the body did, the verdict first."""
-import argparse
 import sys
 from pathlib import Path
 
-from .cli import EPILOG, command, print_json
+from .cli import argument_parser, command, print_json
 from .io.files import output_problems
 from .io.problems import FileProblems, reported
 from .io.records import provenance_line
 from .runner.simulate import simulate, summary, to_json_dict
 
+DESCRIPTION = ("Run one scene and show what the body did, the verdict first; --plot, "
+               "--animate and --history draw and keep its time history.")
 
 @command
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m sweep.scene", description=__doc__,
-                                     epilog=EPILOG)
+    parser = argument_parser("sweep.scene", DESCRIPTION, quantities=True)
     parser.add_argument("scene", help="scene file (YAML)")
     said = parser.add_mutually_exclusive_group()
     said.add_argument("--json", action="store_true",

@@ -261,7 +261,7 @@ def report(ds):
 
 
 main = report_command(
-    "python -m sweep.paper.rates",
+    "sweep.paper.rates",
     "Tables and slow-limit fits of rate studies.",
     report)
 

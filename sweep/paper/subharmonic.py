@@ -145,7 +145,7 @@ def report(ds, rockings=None):
 
 
 main = report_command(
-    "python -m sweep.paper.subharmonic",
+    "sweep.paper.subharmonic",
     "Overturnings of sweep studies by the rocking before them, counted per condition.",
     report)
 
