@@ -23,10 +23,11 @@ The decorated ``main`` returns the exit status instead of a traceback when
 It prints an input file's values that are likely not meant (``InputWarning``) as one line
 each, ``warning: <path>: <message>``.
 
-``argument_parser`` makes a command's ``argparse`` parser: named as it was called (``rigid-scene`` as
-the console script, ``python -m sweep.scene`` otherwise; :func:`program`), its description
-without reStructuredText markup (:func:`plain`), and ``EPILOG`` (the units of quantities and
-where every key of the input files is described) for the commands that read quantities.
+``argument_parser`` makes a command's ``argparse`` parser: named as it was called
+(``rigid-scene`` as the console script, ``python -m sweep.scene`` otherwise; :func:`program`),
+its description without reStructuredText markup (:func:`plain`), and ``EPILOG`` (the units of
+quantities and where every key of the input files is described) for the commands that read
+quantities.
 
 ``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``; a long
 list can be kept on one line, so that a reader sees the keys before the arrays.

@@ -7,6 +7,7 @@ Every panel is scaled to its data: a floor component that is zero throughout get
 a factor of two of them (else a note names them).
 """
 import math
+import sys
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -14,13 +15,22 @@ import numpy as np
 from kernels.codes import MODE_NAMES, REST
 
 from ..runner.verdict import verdict
+from .gif import FPS, MAX_FPS, estimated_size, frame_step, save_gif
 from .style import GAL
 
 MAX_OUTLINES = 150            # more outlines than this blur into a smear
 TITLE_WIDTH = 100             # characters of a scene plot's title line (13 pt over 12 inches)
 CAPTION_WIDTH = 200           # ... of its caption's lines (7 pt)
-ANIMATION_TITLE_WIDTH = 70    # ... of an animation's (8 pt over 5 inches)
-FRAME_DT = 0.02               # s between frames of an animation: 50 frames a second, real time
+ANIMATION_TITLE_WIDTH = 80    # ... of an animation's (8 pt over 5 inches)
+NAME_WIDTH = 72               # characters of the scene's name under it (a path's end if longer)
+WINDOW_MARGIN = 0.5           # s an animation shows before the first motion and after the last
+STILL_SPAN = 2.0              # s an animation shows of a body that never moves
+HEADING_LINE = 8 * 1.3 / 72   # inches of a heading line of an animation (8 pt)
+HEADING_PAD = 0.12            # inches above and below the heading
+TIME_LINE = 0.3               # inches of the frame's time line above the view (9 pt, padded)
+BELOW_VIEW = 0.5              # inches below the view: tick labels and the x label
+SIZE_SAMPLES = 5              # runs of successive frames encoded to estimate a GIF's size
+GOLDEN = (math.sqrt(5) - 1) / 2
 ALPHA_LINE_REACH = 0.5        # theta/alpha = ±1 drawn when max |theta|/alpha is at least this
 FLOOR_MARKS = 12              # hatch marks under the floor across the animation's view
 FLOOR = {"a_x": ("horizontal", "tab:red"), "a_y": ("vertical", "tab:green")}
@@ -177,28 +187,102 @@ def floor_displacement(a_x, dt):
     return integrated(a_x, dt)[1][pad:pad + a_x.size]
 
 
-def animate_scene(ds, path, name="", quiet=False):
-    """GIF of the body on the moving floor, in real time: one frame every ``FRAME_DT`` (the
-    history sample nearest to it) or every sample of a coarser history.
+def animation_window(ds, start=None, end=None):
+    """``(t0, t1, how)``: the times [s] an animation shows, and how they were chosen (words).
 
-    The floor moves by its baseline-corrected displacement (:func:`floor_displacement`), so
-    the view, fixed, stays on the body.  The axes are drawn once; each frame redraws only the
-    body, the floor, the title and the spines above them (as a full drawing stacks them) over
-    that background, and the frames go to the GIF as they are drawn (``gif.save_gif``), with
-    a progress line on stderr unless ``quiet``.
+    By default from ``WINDOW_MARGIN`` before the body first leaves rest to ``WINDOW_MARGIN``
+    after it last moves (its final rest; an overturning or a motion that lasts to the end of
+    the history ends there), within the history; a body that never moves: the first
+    ``STILL_SPAN``.  ``start`` and ``end`` given replace either end; the other one stays the
+    default's where that leaves a window, else it is the history's own end.
+
+    Raises
+    ------
+    ValueError
+        ``start`` at or after the history's end, or ``end`` at or before its start, or
+        ``end`` not after ``start``.
     """
-    from ..runner.progress import Progress
-    from .gif import save_gif
+    t = ds["time"].values
+    moving = np.flatnonzero(ds["mode"].values != REST)
+    if moving.size:
+        t0, t1 = t[moving[0]] - WINDOW_MARGIN, t[moving[-1]] + WINDOW_MARGIN
+        since = "the start" if t0 <= t[0] else f"{WINDOW_MARGIN:g} s before the first motion"
+        if moving[-1] == t.size - 1:
+            until = ("the overturning" if ds.attrs.get("status") == "overturned"
+                     else "the end of the history, still moving")
+        else:
+            until = f"{WINDOW_MARGIN:g} s after the last (final rest)"
+        how = f"from {since} to {until}"
+    else:
+        t0, t1 = t[0], t[0] + STILL_SPAN
+        how = f"the body never moves: the first {STILL_SPAN:g} s"
+    t0, t1 = max(t0, t[0]), min(t1, t[-1])
+    if start is None and end is None:
+        return t0, t1, how
+    if start is not None and start >= t[-1]:
+        raise ValueError(f"the history ends at {t[-1]:g} s, not after {start:g} s")
+    if end is not None and end <= t[0]:
+        raise ValueError(f"the history starts at {t[0]:g} s, not before {end:g} s")
+    if start is not None and end is not None and not end > start:
+        raise ValueError(f"the end {end:g} s is not after the start {start:g} s")
+    if start is None:
+        start = t0 if t0 < end else t[0]
+    if end is None:
+        end = t1 if t1 > start else t[-1]
+    return max(start, t[0]), min(end, t[-1]), "as asked"
+
+
+def _size(count):
+    """Bytes for people: ``350 kB``, ``3.5 MB``."""
+    return f"{count / 1e6:.2g} MB" if count >= 1e6 else f"{max(count / 1e3, 1):.0f} kB"
+
+
+def _short(name, width):
+    """``name`` in ``width`` characters at most: its end, after an ellipsis."""
+    return name if len(name) <= width else "…" + name[-(width - 1):]
+
+
+def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None):
+    """GIF of the body on the moving floor, in real time: one frame every
+    ``gif.frame_step`` (the history sample nearest to it) over :func:`animation_window`
+    (by default the motion and ``WINDOW_MARGIN`` either side).
+
+    Before any frame is written, one line on stderr (unless ``quiet``) gives the window and
+    how it was chosen, the frame count, the frame rate and the file's estimated size
+    (``gif.estimated_size``).  The floor moves by its baseline-corrected displacement
+    (:func:`floor_displacement`), so the view, fixed, stays on the body.  The verdict and
+    ``name`` head the figure, above the time and motion type of each frame.  The axes are
+    drawn once; each frame redraws only the body, the floor, the time and the spines above
+    them (as a full drawing stacks them) over that background, and the frames go to the GIF as
+    they are drawn (``gif.save_gif``), with a progress line on stderr unless ``quiet``.
+
+    Returns
+    -------
+    int
+        The number of frames written.
+
+    Raises
+    ------
+    ValueError
+        A window outside the history (:func:`animation_window`), or ``fps`` not in (0,
+        ``MAX_FPS``].
+    """
+    from ..runner.progress import Progress, emit
+    if not 0 < fps <= MAX_FPS:
+        raise ValueError(f"fps must be above 0 and at most {MAX_FPS}, got {fps:g}")
     b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
     t = ds["time"].values
-    dt = float(t[1] - t[0]) if t.size > 1 else FRAME_DT
-    frame_dt = max(dt, FRAME_DT)
-    frames = np.unique(np.rint(np.arange(0.0, t[-1] + 0.5 * dt, frame_dt) / dt).astype(int))
+    dt = float(t[1] - t[0]) if t.size > 1 else 1.0 / FPS
+    t0, t1, how = animation_window(ds, start, end)
+    step = frame_step(fps, dt)
+    times = t0 + step * np.arange(int(np.floor((t1 - t0) / step + 1e-9)) + 1)
+    frames = np.unique(np.rint((times - t[0]) / dt).astype(int))
     frames = frames[frames < t.size]
     d_floor = floor_displacement(ds.a_x.values, dt)
     x_abs = d_floor + ds.x.values
     y, theta, mode = ds.y.values, ds.theta.values, ds["mode"].values
-    corners_x, corners_y = outline(x_abs[:, None], y[:, None], theta[:, None], b, h)
+    shown = slice(frames[0], frames[-1] + 1)
+    corners_x, corners_y = outline(x_abs[shown, None], y[shown, None], theta[shown, None], b, h)
     span = max(np.ptp(corners_x) + 2 * b, 3 * h)  # the whole body in view at every frame
     centre = 0.5 * (corners_x.max() + corners_x.min())
     # the floor: a line with hatch marks below it that move with it
@@ -206,38 +290,67 @@ def animate_scene(ds, path, name="", quiet=False):
     hatch_x = np.stack([marks, marks - 0.1 * h, np.full_like(marks, np.nan)], axis=1).ravel()
     hatch_y = np.tile([0.0, -0.1 * h, np.nan], marks.size)
     bottom, top = -0.15 * h, corners_y.max() + 0.4 * h
-    # 5 inches wide; as high as the view's aspect asks, plus an inch for the titles and label
-    fig, ax = plt.subplots(figsize=(5, float(np.clip(4 * (top - bottom) / span, 2, 6)) + 1))
+    # 5 inches wide; the view as high as its aspect asks, with room above it for the verdict's
+    # lines, the name and the frame's time, each on its own line, and below it for the x label
+    verdict_text = scene_verdict(ds)
+    heading = [_wrap(verdict_text, ANIMATION_TITLE_WIDTH)] if verdict_text else []
+    lines = sum(part.count("\n") + 1 for part in heading) + (1 if name else 0)
+    above = HEADING_PAD + lines * HEADING_LINE + TIME_LINE
+    view = float(np.clip(4 * (top - bottom) / span, 2, 6))
+    height = above + view + BELOW_VIEW
+    fig, ax = plt.subplots(figsize=(5, height))
+    fig.subplots_adjust(left=0.12, right=0.97, top=1 - above / height,
+                        bottom=BELOW_VIEW / height)
     ax.set_xlim((centre - span / 2) * 100, (centre + span / 2) * 100)
     ax.set_ylim(bottom * 100, top * 100)
     ax.set_aspect("equal")
     ax.set_xlabel("x [cm]")
-    title = scene_verdict(ds)
-    if title:
-        fig.suptitle(_wrap(title, ANIMATION_TITLE_WIDTH), fontsize=8)
+    y_text = 1 - HEADING_PAD / 2 / height
+    if heading:
+        fig.text(0.5, y_text, heading[0], ha="center", va="top", fontsize=8)
+        y_text -= (heading[0].count("\n") + 1) * HEADING_LINE / height
+    if name:
+        fig.text(0.5, y_text, _short(name, NAME_WIDTH), ha="center", va="top",
+                 fontsize=8, color="0.35")
     (floor,) = ax.plot([], [], color="k", lw=1.5)
     (body,) = ax.plot([], [], color="tab:blue", lw=2)
-    label = ax.set_title(name, fontsize=9)
+    label = ax.set_title(" ", fontsize=9)
     moving = [floor, body, *ax.spines.values(), label]  # in the order a full drawing uses
     for artist in moving:
         artist.set_animated(True)
     canvas = fig.canvas
     canvas.draw()
     background = canvas.copy_from_bbox(fig.bbox)
-    progress = Progress(frames.size, quiet=quiet, prefix=f"animating {path}", unit="frame")
 
     def frame(k):
         px, py = outline(x_abs[k], y[k], theta[k], b, h)
         body.set_data(px * 100, py * 100)
         floor.set_data(np.r_[centre - span, centre + span, np.nan, hatch_x + d_floor[k]] * 100,
                        np.r_[0.0, 0.0, np.nan, hatch_y] * 100)
-        label.set_text(f"{name}  t = {t[k]:.2f} s  {MODE_NAMES[int(mode[k])].replace('_', ' ')}")
+        label.set_text(f"t = {t[k]:.2f} s   {MODE_NAMES[int(mode[k])].replace('_', ' ')}")
         canvas.restore_region(background)
         for artist in moving:
             fig.draw_artist(artist)
-        progress.update(1)
-        return np.asarray(canvas.buffer_rgba())
+        return np.array(canvas.buffer_rgba())
 
-    save_gif(path, (frame(k) for k in frames), fps=1.0 / frame_dt)
+    if not quiet:
+        # frames spread by the golden ratio, so as not to fall on one phase of a periodic motion
+        picks = np.unique(((np.arange(SIZE_SAMPLES) + 0.5) * GOLDEN % 1 * (frames.size - 1))
+                          .astype(int))
+        size = estimated_size([[frame(frames[min(k + j, frames.size - 1)]) for j in range(3)]
+                               for k in picks], frames.size)
+        how += "" if start is not None or end is not None else "; --from/--to choose"
+        emit(f"animating {path}: t = {t[frames[0]]:.2f} to {t[frames[-1]]:.2f} s ({how}), "
+             f"{frames.size} frames at {1 / step:.3g} fps (one every {step:g} s, real time), "
+             f"about {_size(size)}", sys.stderr)
+    progress = Progress(frames.size, quiet=quiet, prefix=f"animating {path}", unit="frame")
+
+    def counted(k):
+        rgba = frame(k)
+        progress.update(1)
+        return rgba
+
+    save_gif(path, (counted(k) for k in frames), fps=1.0 / step)
     progress.close()
     plt.close(fig)
+    return frames.size
