@@ -115,8 +115,11 @@ def main(argv=None):
                         f"more for {', '.join(sorted(SEVERAL))}")
     parser.add_argument("--figure", required=True, choices=sorted(FIGURES))
     parser.add_argument("-o", "--output", required=True, help="image file (.png, .pdf, .svg)")
-    parser.add_argument("--x", default=None, help="dimension along x (map)")
-    parser.add_argument("--y", default=None, help="dimension along y (map)")
+    parser.add_argument("--x", default=None, help="dimension along x (map; default frequency, "
+                        "else the second dimension, a numeric one beside names)")
+    parser.add_argument("--y", default=None, help="dimension along y (map; default amplitude, "
+                        "else the first dimension; an axis of names such as record: one row "
+                        "per name)")
     args = parser.parse_args(argv)
     if (not args.result) != (args.figure in WITHOUT_DATASET):
         parser.error(f"--figure {args.figure} " + ("takes no RESULT (it is drawn from closed "

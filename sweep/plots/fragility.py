@@ -6,22 +6,27 @@ against the intensity measure on a log axis (PGA in m/s² with g on top, PGV in 
 ``figure_map``: per group, the two-parameter fragility Φ(b0 + b1 ln PGA + b2 ln PGV) as
 filled contours over (PGA, PGV) with the 0.1, 0.5 and 0.9 lines labelled, and the cells as
 markers, overturned or standing.
+
+Both are titled in two lines at most (the study and what is drawn; the ensemble and the
+methods), their labels wrapped to their axes; their legends lie outside the panels, under
+them, so that no point is hidden: a curve's θ and β are in its panel's title.
 """
 import math
-import textwrap
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 
 from kernels import codes
 
 from ..groundmotion.intensity import G
 from ..probability.fragility import describe_group, group_coords, group_indices
-from .style import plain_log_axis
+from .style import fit_suptitle, fit_texts, legend_columns, plain_log_axis
 
 MAX_PANELS = 12  # more groups than this: this many, evenly spread over them
 COLUMNS = 3
+MIN_WIDTH = 8.0  # inches of a figure of one or two panels: room for its two-line title
 CM = 100.0  # cm per m
 # intensity measure -> (axis label, factor from SI to the plotted unit)
 IM_AXES = {
@@ -37,8 +42,11 @@ OVERTURNED_STYLE = {"marker": "^", "s": 24, "facecolors": "black", "edgecolors":
 STANDING_STYLE = {"marker": "o", "s": 18, "facecolors": "white", "edgecolors": "#08306b",
                   "linewidths": 0.8, "zorder": 3}
 FIT_COLOUR, DATA_COLOUR = "#cb181d", "#08306b"
+DATA_STYLE = {"fmt": "o", "ms": 4, "color": DATA_COLOUR, "ecolor": DATA_COLOUR, "elinewidth": 1,
+              "capsize": 2.5}
+FIT_STYLE = {"color": FIT_COLOUR, "lw": 1.6}
+BAND_STYLE = {"color": FIT_COLOUR, "alpha": 0.18, "lw": 0}
 BAND_METHODS = {"bootstrap": "BCa bootstrap over the members", "delta": "delta method"}
-CHARACTERS_PER_INCH = 13  # of a 10-point title line, for wrapping it to the figure's width
 
 
 def _shown_groups(frag):
@@ -54,7 +62,8 @@ def _panels(count):
     """A figure of ``count`` panels sharing their axes, three to a row; its visible axes."""
     columns = min(COLUMNS, count)
     rows = math.ceil(count / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(4.8 * columns, 3.9 * rows + 0.9),
+    fig, axes = plt.subplots(rows, columns, figsize=(max(4.8 * columns, MIN_WIDTH),
+                                                     3.9 * rows + 0.9),
                              layout="constrained", squeeze=False, sharex=True, sharey=True)
     for ax in axes.flat[count:]:
         ax.set_visible(False)
@@ -85,51 +94,53 @@ def figure_curves(frag):
     interval = frag.attrs["interval_method"].split()[0]
     shown, groups, note = _shown_groups(frag)
     fig, axes = _panels(len(shown))
+    confidence = f"{float(frag.attrs['confidence']):.0%}"
     for ax, which in zip(axes, shown):
         index = groups[which]
         group = frag.isel(index)
         p = group["p_overturned"].values
         x = group["im_median"].values * factor
         present = np.isfinite(p) & np.isfinite(x)
-        members = int(group["n_members"].max())
         ax.errorbar(x[present], p[present],
                     yerr=[p[present] - group["p_overturned_lower"].values[present],
                           group["p_overturned_upper"].values[present] - p[present]],
-                    fmt="o", ms=4, color=DATA_COLOUR, ecolor=DATA_COLOUR, elinewidth=1,
-                    capsize=2.5, label=f"k/n at each {'bin' if binned else 'level'} "
-                                       f"(n ≤ {members}), {interval} interval")
+                    **DATA_STYLE)
         grid = frag["im_grid"].values * factor
         if int(group["fit_status"]) == 0:
-            ax.fill_between(grid, group["p_fit_lower"], group["p_fit_upper"],
-                            color=FIT_COLOUR, alpha=0.18, lw=0)
+            ax.fill_between(grid, group["p_fit_lower"], group["p_fit_upper"], **BAND_STYLE)
             theta = [float(group[n]) * factor for n in ("theta", "theta_lower",
                                                         "theta_upper")]
             beta = [float(group[n]) for n in ("beta", "beta_lower", "beta_upper")]
-            ax.plot(grid, group["p_fit"], color=FIT_COLOUR, lw=1.6,
-                    label=f"θ = {_interval_text(*theta, IM_UNITS[im])}\n"
-                          f"β = {_interval_text(*beta)}")
+            ax.plot(grid, group["p_fit"], **FIT_STYLE)
+            fit = f"θ = {_interval_text(*theta, IM_UNITS[im])}, β = {_interval_text(*beta)}"
         else:
             reason = _flag_meaning(frag["fit_status"], int(group["fit_status"]))
-            ax.text(0.03, 0.92, f"no lognormal fit: {reason.replace('_', ' ')}",
-                    transform=ax.transAxes, fontsize=8, va="top")
-        ax.set_title(describe_group(group_coords(frag, index)), fontsize=9)
-        ax.legend(fontsize=7.5, loc="upper left")
+            fit = f"no lognormal fit: {reason.replace('_', ' ')}"
+        # the fit's numbers under the group's name: no legend inside the panel to hide data
+        ax.set_title(f"{describe_group(group_coords(frag, index))}\n{fit}", fontsize=9)
         ax.grid(True, which="major", alpha=0.3)
     first = axes[0]
     first.set_xscale("log")
     plain_log_axis(first.xaxis)
-    first.set_ylim(-0.03, 1.12)  # room for the legend above P = 1
+    first.set_ylim(-0.03, 1.03)
     _label_outer(axes, label, "P(overturning)")
+    members = int(frag["n_members"].max())
+    handles = [Line2D([], [], ls="", marker="o", ms=4, color=DATA_COLOUR,
+                      label=f"k/n at each {'bin' if binned else 'level'} (n ≤ {members}), "
+                            f"{interval} interval"),
+               Line2D([], [], **FIT_STYLE, label="lognormal fit (θ, β: panel titles)"),
+               Patch(**BAND_STYLE, label=f"{confidence} band of the fit")]
+    fig.legend(handles=handles, loc="outside lower center", fontsize=8, frameon=False,
+               ncols=legend_columns(fig, [h.get_label() for h in handles], 8))
     if im == "pga":
         for ax in axes[:COLUMNS]:
             top = ax.secondary_xaxis("top", functions=(lambda a: a / G, lambda a: a * G))
             plain_log_axis(top.xaxis)
             top.set_xlabel("PGA [g]", fontsize=8)
             top.tick_params(labelsize=8)
-    confidence = f"{float(frag.attrs['confidence']):.0%}"
     band = BAND_METHODS[frag.attrs["fit_interval"]]
-    fig.suptitle(_title(fig, frag, "fragility curves" + note,
-                        f"{confidence} intervals; band of the fit by the {band}"), fontsize=10)
+    _title(fig, frag, "fragility curves" + note, f"{confidence} intervals; band: {band}")
+    fit_texts(fig)
     return fig
 
 
@@ -151,15 +162,16 @@ def _flag_meaning(da, code):
 
 
 def _title(fig, frag, what, details):
-    """The study and what is drawn; the ensemble, ``details`` and the failed cells, wrapped
-    to the figure's width."""
+    """The figure's title, two lines at most (``style.fit_suptitle``): the study and what is
+    drawn; the ensemble, ``details`` and the failed cells."""
     levels = frag.attrs["level_dimension"]
     along = f", levels {levels}" if levels != "none" else ", binned in ln IM"
-    width = int(CHARACTERS_PER_INCH * fig.get_figwidth())
-    return "\n".join([*textwrap.wrap(f"{frag.attrs.get('input_title') or 'study'}: {what}",
-                                     width), *textwrap.wrap(
-        f"members over {frag.attrs['ensemble_dimensions']}{along}; {details}; "
-        f"{frag.attrs['failed_cells']} failed cells left out", width)])
+    members = ", ".join(str(frag.attrs["ensemble_dimensions"]).split())
+    failed = int(frag.attrs["failed_cells"])
+    return fit_suptitle(fig, [f"{frag.attrs.get('input_title') or 'study'}: {what}",
+                              f"members over {members}{along}; {details}; "
+                              + (f"{failed} failed cells left out" if failed else
+                                 "no failed cells")])
 
 
 def figure_map(frag, pga, pgv, outcome):
@@ -198,8 +210,10 @@ def figure_map(frag, pga, pgv, outcome):
                 surface = np.where(grid_x < west, 0.0, surface)
             filled = ax.contourf(grid_x, grid_y, surface, levels=np.linspace(0, 1, 11),
                                  cmap="YlOrRd", alpha=0.85)
-            lines = ax.contour(grid_x, grid_y, surface, levels=PROBABILITY_LINES,
-                               colors="k", linewidths=(0.8, 1.4, 0.8))
+            # the lines end at West's acceleration, so that their labels sit on the fit
+            lines = ax.contour(grid_x, grid_y, np.where(grid_x < west, np.nan, surface),
+                               levels=PROBABILITY_LINES, colors="k",
+                               linewidths=(0.8, 1.4, 0.8))
             ax.clabel(lines, fmt=lambda v: f"P = {v:g}", fontsize=7.5)
         else:
             reason = _flag_meaning(frag["surface_status"], int(group["surface_status"]))
@@ -229,8 +243,9 @@ def figure_map(frag, pga, pgv, outcome):
     if filled is not None:
         fig.colorbar(filled, ax=list(axes), label="P(overturning) = "
                      "Φ(b0 + b1 ln PGA + b2 ln PGV)", shrink=0.9)
-    fig.suptitle(_title(fig, frag, "two-parameter fragility over (PGA, PGV)" + note,
-                        "probit fit to every cell"), fontsize=10)
+    _title(fig, frag, "two-parameter fragility over (PGA, PGV)" + note,
+           "probit fit to every cell")
+    fit_texts(fig)
     return fig
 
 

@@ -3,13 +3,15 @@
 Closed forms only (``sweep.paper.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16),
 d_o of Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11)
 against the height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the
-slender-body rules of Eqs. (17), (19), (21) dashed.
+slender-body rules of Eqs. (17), (19), (21) dashed.  Each panel's legend (its equations; the
+breadths on the first) sits in a corner its curves leave free (``style.place_legends``).
 """
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.lines import Line2D
 
 from ..paper import criteria
-from .style import log_axes
+from .style import fit_suptitle, fit_texts, log_axes, place_legends
 
 BREADTHS_CM = (5, 10, 20, 50, 100)  # one curve per breadth B [cm]
 H_MAX_CM = 1000.0  # heights drawn from H = B (a cube's face) to this [cm]
@@ -55,18 +57,22 @@ def figure_limits():
             ax.plot(H_cm, exact[key], color=colour, lw=1.6, label=f"B = {B_cm} cm")
             if rule:
                 ax.plot(H_cm, approx[key], color=colour, lw=1.0, ls="--")
+    placements = []
     for ax, (key, label, eq, rule) in zip(axes.flat, PANELS):
         log_axes(ax)
         ax.set_xlabel("height of the body H [cm]")
         ax.set_ylabel(label)
-        text = f"solid: Eq. {eq}" + (f"\ndashed: Eq. {rule}" if rule else "")
-        ax.text(0.97, 0.97 if key != "a" else 0.05, text, transform=ax.transAxes, ha="right",
-                va="top" if key != "a" else "bottom", fontsize=8,
-                bbox={"fc": "white", "ec": "0.8", "alpha": 0.9})
         ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    axes[0, 0].legend(fontsize=8, loc="lower left")
-    fig.suptitle("Lower limits of acceleration, velocity and displacement to overturn a "
-                 "homogeneous rectangular body (Ishiyama 1982, Fig. 17)\n"
-                 "each curve starts at H = B; a_o = (B/H) g, v_o = 0.4 v_H, d_o = v_o²/a_o, "
-                 "T_c = 2π v_o/a_o", fontsize=10)
+        handles = ax.get_legend_handles_labels()[0] if key == "a" else []
+        handles.append(Line2D([], [], color="k", lw=1.6, label=f"solid: Eq. {eq}"))
+        if rule:
+            handles.append(Line2D([], [], color="k", lw=1.0, ls="--",
+                                  label=f"dashed: Eq. {rule}"))
+        placements.append((ax, {"handles": handles, "fontsize": 8, "framealpha": 0.9}))
+    fit_suptitle(fig, ["Lower limits of acceleration, velocity and displacement to overturn a "
+                       "homogeneous rectangular body (Ishiyama 1982, Fig. 17)",
+                       "each curve starts at H = B; a_o = (B/H) g, v_o = 0.4 v_H, "
+                       "d_o = v_o²/a_o, T_c = 2π v_o/a_o"])
+    fit_texts(fig)
+    place_legends(fig, placements)
     return fig

@@ -11,25 +11,39 @@ titled with the body ("B 10 cm × H 30 cm (b/h 0.333)", from the study's base sc
 panel's values of ``B``, ``H``, ``b_over_h`` and ``size``), the other axes' values follow
 with their units.
 
+An axis of strings (``record``: bundled names, paths, the files of a ``{glob: ...}``; or any
+other) is categorical: one row or column of cells per value, named by its tick label (a file
+by its name, without its folder).  Unless ``x`` or ``y`` is given, such an axis runs along y,
+one row per record from the top, and the numeric axis beside it (``pga``, ``scale``) along x:
+the record x PGA map reads as one strip of outcomes per record against the intensity, with
+the names written level whatever their length (``--x record`` gives one column per record,
+names slanted).  An axis of integers (``seed``) has integer ticks, and an axis of a few values
+a tick on each.  Titles take at most two lines and axis labels are wrapped to their axes
+(``style.fit_texts``).
+
 A refine study's dataset (``cf.REFINE_VARIABLES``) is drawn by :func:`figure_boundary`: the
 boundary along the refined axis against another axis, with its bracket, over the coarse
 values seen standing and overturned.
 """
 import itertools
+from pathlib import PurePath
 
 import matplotlib.pyplot as plt
 import numpy as np
 import yaml
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
-from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+from matplotlib.ticker import LogLocator, MaxNLocator, NullFormatter, ScalarFormatter
 
 from ..io import units
 from ..runner.verdict import length_text
-from .style import (OUTCOME_COLOURS, RELATIVE_LABELS, axis_label, cell_edges, outcome_colours,
-                    study_axis)
+from .style import (OUTCOME_COLOURS, POINTS_PER_INCH, RELATIVE_LABELS, axis_label, cell_edges,
+                    fit_suptitle, fit_texts, outcome_colours, study_axis, text_width)
 
 MAX_PANELS = 6  # more combinations of the other axes than this: the first ones are drawn
+FEW_VALUES = 8  # a linear axis of at most this many values gets a tick on each
+CATEGORY_INCHES = 0.22  # room of one row or column of a string axis (8-point names)
+CATEGORY_FONT_SIZE = 8
 BODY_AXES = ("B", "H", "b_over_h", "size", "body.B", "body.H")  # study axes that change the body
 
 
@@ -84,6 +98,62 @@ def panel_title(ds, sel, x, y):
     return ", ".join(_value_text(c, c.values[i]) for c, i in coords)
 
 
+def categorical(coord):
+    """Whether a coordinate's values are names (strings), drawn one row or column each."""
+    return coord.dtype.kind not in "biuf"
+
+
+def category_labels(values):
+    """Tick labels of a string axis: each value, a path by its file name (the whole value
+    where two files share a name)."""
+    names = [PurePath(str(v)).name or str(v) for v in values]
+    return names if len(set(names)) == len(names) else [str(v) for v in values]
+
+
+def cells_along(coord):
+    """Where a map puts the cells of ``coord``: (centres, edges, scale), scale 'category'
+    (centres 0, 1, ...: one per name), 'log' (log-spaced values) or 'linear'."""
+    if categorical(coord):
+        return np.arange(coord.size, dtype=float), np.arange(coord.size + 1) - 0.5, "category"
+    values = np.asarray(coord.values, dtype=float)
+    log = _log_spaced(values)
+    return values, cell_edges(values, log), "log" if log else "linear"
+
+
+def _label(coord):
+    """Axis label of a map: the names of a string axis say what they are, so its own name
+    ('record'); otherwise ``style.axis_label``."""
+    return coord.name if categorical(coord) else axis_label(coord)
+
+
+def _ticks(ax, which, coord, centres, scale):
+    """Ticks of the ``which`` ('x' or 'y') axis of a map along ``coord``: names on a string
+    axis (first at the top along y, slanted along x), plain numbers at 1, 2, 5 x 10^k on a
+    log axis, integers on an integer axis, and a tick on each of a few values."""
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    if scale == "category":
+        axis.set_ticks(centres, labels=category_labels(coord.values),
+                       fontsize=CATEGORY_FONT_SIZE)
+        axis.set_tick_params(which="minor", length=0)
+        if which == "y":
+            ax.invert_yaxis()
+        else:
+            plt.setp(axis.get_ticklabels(), rotation=30, ha="right", rotation_mode="anchor")
+        return
+    if scale == "log":
+        (ax.set_xscale if which == "x" else ax.set_yscale)("log")
+        axis.set_major_formatter(ScalarFormatter())
+        axis.set_minor_formatter(NullFormatter())
+        axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        return
+    integer = coord.dtype.kind in "iu"
+    if centres.size <= FEW_VALUES:
+        axis.set_ticks(centres, labels=[f"{int(v)}" if integer else f"{v:.4g}"
+                                        for v in centres])
+    elif integer:
+        axis.set_major_locator(MaxNLocator(integer=True))
+
+
 def _log_spaced(values):
     v = np.asarray(values, dtype=float)
     if v.size < 3 or np.any(v <= 0):
@@ -100,18 +170,22 @@ def _axes_of(ds, x, y):
         rest = [d for d in dims if d not in (x, y)]
         if len(rest) < (x is None) + (y is None):
             raise ValueError(f"an outcome map needs two dimensions; the dataset has {dims}")
+        chosen = x is None and y is None
         y = y or rest.pop(0)
         x = x or rest.pop(0)
+        if chosen and categorical(ds[x]) and not categorical(ds[y]):
+            x, y = y, x  # names along y, written level; the numbers along x
     for name in (x, y):
         if name not in dims:
             raise ValueError(f"{name!r} is not a dimension of the dataset: {dims}")
     return x, y
 
 
-def _mark_slid(ax, slid, x, y):
-    """A small cross on every cell whose body slid (``slid`` == 1); True if any."""
+def _mark_slid(ax, slid, x, y, xs, ys):
+    """A small cross on every cell whose body slid (``slid`` == 1), the cells centred at
+    ``xs`` and ``ys``; True if any."""
     slid = slid.transpose(y, x)
-    X, Y = np.meshgrid(slid[x].values, slid[y].values)
+    X, Y = np.meshgrid(xs, ys)
     hit = slid.values == 1
     ax.scatter(X[hit], Y[hit], marker="x", s=10, c="k", linewidths=0.7)
     return bool(hit.any())
@@ -121,24 +195,19 @@ def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
     """Draw one 2-D outcome slice ``da`` (dims x and y) on ``ax``; cells of ``slid`` == 1
     (the same slice of the dataset's ``slid``) get a cross."""
     da = da.transpose(y, x)
-    xs, ys = da[x].values, da[y].values
-    logx, logy = _log_spaced(xs), _log_spaced(ys)
+    (xs, x_edges, x_scale), (ys, y_edges, y_scale) = cells_along(da[x]), cells_along(da[y])
     cmap, norm = outcome_colours()
-    ax.pcolormesh(cell_edges(xs, logx), cell_edges(ys, logy), da.values, cmap=cmap, norm=norm,
-                  edgecolors="white", linewidth=0.3)
-    for log, axis, scale in ((logx, ax.xaxis, ax.set_xscale), (logy, ax.yaxis, ax.set_yscale)):
-        if log:
-            scale("log")
-            axis.set_major_formatter(ScalarFormatter())
-            axis.set_minor_formatter(NullFormatter())
-            axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    ax.set_xlabel(axis_label(da[x]))
-    ax.set_ylabel(axis_label(da[y]))
+    ax.pcolormesh(x_edges, y_edges, da.values, cmap=cmap, norm=norm, edgecolors="white",
+                  linewidth=0.3)
+    _ticks(ax, "x", da[x], xs, x_scale)
+    _ticks(ax, "y", da[y], ys, y_scale)
+    ax.set_xlabel(_label(da[x]))
+    ax.set_ylabel(_label(da[y]))
     if da[y].attrs.get("study_unit") == "west":
         ax.axhline(1.0, color="k", ls="--", lw=1)
         ax.annotate("West: a = (B/H) g", (xs.max(), 1.0), xytext=(-2, 3), ha="right",
                     textcoords="offset points", fontsize=8)
-    any_slid = slid is not None and _mark_slid(ax, slid, x, y)
+    any_slid = slid is not None and _mark_slid(ax, slid, x, y, xs, ys)
     if legend:
         meanings = da.attrs.get("flag_meanings", "failed no_rocking rocked overturned").split()
         values = list(np.atleast_1d(da.attrs.get("flag_values", sorted(OUTCOME_COLOURS))))
@@ -172,7 +241,14 @@ def figure_map(ds, x=None, y=None):
     n = len(combos)
     cols = min(n, 3)
     rows = int(np.ceil(n / cols))
-    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols + 1.4, 3.8 * rows),
+    width, height = 4.6, 3.8  # of a panel [in]; more for many names along an axis
+    if categorical(ds[x]):
+        width = max(width, CATEGORY_INCHES * ds.sizes[x] + 1.6)
+    if categorical(ds[y]):  # the names written level beside the panel
+        height = max(height, CATEGORY_INCHES * ds.sizes[y] + 1.4)
+        width += max(text_width(name, CATEGORY_FONT_SIZE)
+                     for name in category_labels(ds[y].values)) / POINTS_PER_INCH
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols + 1.4, height * rows),
                              squeeze=False, layout="constrained")
     for k, combo in enumerate(combos):
         ax = axes.flat[k]
@@ -182,7 +258,8 @@ def figure_map(ds, x=None, y=None):
         ax.set_title(panel_title(ds, sel, x, y), fontsize=10)
     for ax in axes.flat[n:]:
         ax.set_visible(False)
-    fig.suptitle(ds.attrs.get("title", "outcome map"), fontsize=11)
+    fit_suptitle(fig, ds.attrs.get("title", "outcome map"), fontsize=11)
+    fit_texts(fig)
     return fig
 
 
@@ -215,18 +292,13 @@ def draw_boundary(ax, ds, x):
     Returns the legend's handles."""
     y = refined_dimension(ds)
     coarse = ds["coarse_overturned"].transpose(y, x)
-    xs, ys = ds[x].values, ds[y].values
-    logx = _log_spaced(xs)
+    (xs, x_edges, x_scale), (_, y_edges, _) = cells_along(ds[x]), cells_along(ds[y])
     codes = sorted(COARSE_COLOURS)
     cmap = plt.matplotlib.colors.ListedColormap([COARSE_COLOURS[c] for c in codes])
     norm = plt.matplotlib.colors.BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
-    ax.pcolormesh(cell_edges(xs, logx), cell_edges(ys, _log_spaced(ys)), coarse.values,
-                  cmap=cmap, norm=norm, edgecolors="white", linewidth=0.3)
-    if logx:
-        ax.set_xscale("log")
-        ax.xaxis.set_major_formatter(ScalarFormatter())
-        ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.pcolormesh(x_edges, y_edges, coarse.values, cmap=cmap, norm=norm, edgecolors="white",
+                  linewidth=0.3)
+    _ticks(ax, "x", ds[x], xs, x_scale)
     boundary, lower, upper = (ds[name].values for name in
                               ("boundary", "boundary_lower", "boundary_upper"))
     ax.errorbar(xs, boundary, yerr=[boundary - lower, upper - boundary], color="k", lw=1.2,
@@ -242,7 +314,7 @@ def draw_boundary(ax, ds, x):
             ax.plot(xs[flags == code], ds[where].values[flags == code], ls="", marker=marker,
                     color="k", markersize=7, zorder=3)
             handles.append(Line2D([], [], ls="", marker=marker, color="k", label=text))
-    ax.set_xlabel(axis_label(ds[x]))
+    ax.set_xlabel(_label(ds[x]))
     ax.set_ylabel(f"overturning boundary: {axis_label(ds[y])}")
     if ds[y].attrs.get("study_unit") == "west":
         ax.axhline(1.0, color="k", ls="--", lw=1)
@@ -290,11 +362,12 @@ def figure_boundary(ds, x=None, y=None):
                                                  frameon=False)
     for ax in axes.flat[len(combos):]:
         ax.set_visible(False)
-    fig.suptitle(f"{ds.attrs.get('title', 'overturning boundary')}\n"
-                 f"bisection to {ds.attrs.get('refine_tolerance', np.nan):g} "
-                 f"{_tolerance_unit(ds[refined])}: {ds.attrs.get('refine_simulations', '?')} "
-                 f"simulations (a grid of the same resolution: "
-                 f"{ds.attrs.get('refine_dense_grid_simulations', '?')})", fontsize=10)
+    fit_suptitle(fig, [ds.attrs.get("title", "overturning boundary"),
+                       f"bisection to {ds.attrs.get('refine_tolerance', np.nan):g} "
+                       f"{_tolerance_unit(ds[refined])}: "
+                       f"{ds.attrs.get('refine_simulations', '?')} simulations (a grid of the "
+                       f"same resolution: {ds.attrs.get('refine_dense_grid_simulations', '?')})"])
+    fit_texts(fig)
     return fig
 
 

@@ -11,7 +11,8 @@ PEER's).  Fig. 21 puts every cell of every record of a study on the plane
 
 Datasets need the dimensions ``B`` and ``b_over_h`` (or ``B`` and ``H``); any other dimension
 (e.g. ``excitation.vertical.scale``, 0 without and 1 with the vertical record) gives panels,
-and ``record`` gives the records of Fig. 21.
+and ``record`` gives the records of Fig. 21.  Titles take two lines at most and labels are
+wrapped to their axes (``style.fit_suptitle``, ``style.fit_texts``).
 """
 import itertools
 from pathlib import Path
@@ -24,7 +25,8 @@ from matplotlib.patches import Patch
 
 from ..io import records, units
 from ..paper import criteria
-from .style import OUTCOME_COLOURS, cell_edges, log_axes, outcome_colours
+from .style import (OUTCOME_COLOURS, cell_edges, fit_suptitle, fit_texts, log_axes,
+                    outcome_colours)
 
 # Table 5 of the paper: record -> peak acceleration [m/s^2], velocity [m/s], displacement [m]
 TABLE5 = {
@@ -254,9 +256,10 @@ def figure_record_map(ds):
         ax.set_title((title + "\n" if title else "") + _tally_text(tally(da, pga, pgv)),
                      fontsize=9)
     _legend_below(fig, _outcome_legend(outcome) + lines)
-    fig.suptitle(f"{ds.attrs.get('title', 'bodies under a record')}\n"
-                 f"record {names[0]}: PGA {100 * pga:.1f} gal, PGV {100 * pgv:.2f} cm/s "
-                 f"({source}); letters A, B, C: regions of the criteria", fontsize=10)
+    fit_suptitle(fig, [ds.attrs.get("title", "bodies under a record"),
+                       f"record {names[0]}: PGA {100 * pga:.1f} gal, PGV {100 * pgv:.2f} cm/s "
+                       f"({source}); letters A, B, C: regions of the criteria"])
+    fit_texts(fig)
     return fig
 
 
@@ -311,8 +314,9 @@ def figure_summary(ds):
     ax.set_title("each body under each record; criteria: x = 1 (Eq. 14), y = 1 (Eq. 16)",
                  fontsize=9)
     _draw_region_bars(bar, rows)
-    fig.suptitle(f"{ds.attrs.get('title', 'bodies under records')}\n"
-                 f"bodies with H from {H_WINDOW_CM[0]:g} to {H_WINDOW_CM[1]:g} cm", fontsize=10)
+    fit_suptitle(fig, [ds.attrs.get("title", "bodies under records"),
+                       f"bodies with H from {H_WINDOW_CM[0]:g} to {H_WINDOW_CM[1]:g} cm"])
+    fit_texts(fig)
     return fig
 
 

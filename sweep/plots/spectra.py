@@ -7,7 +7,9 @@ e.g. ``studies/rocking_spectrum_elcentro.yaml``) is read like a response spectru
 rotation over the slenderness angle along y, and the overturned blocks as marks in a band above
 |theta|/alpha = 1, one row per line.  Each cell's body and motion come from the study kept in
 the dataset's attributes (``sweep.paper.classify.study_of``), so any axes that set the body
-work.  SI units throughout; PHYSICS.md 1.1 for the symbols.
+work.  SI units throughout; PHYSICS.md 1.1 for the symbols.  The title takes two lines at most
+(the study; its motion, peaks and contact) and the legend a corner free of lines and marks,
+else the outside of the axes (``style.place_legend``).
 """
 import itertools
 import math
@@ -17,7 +19,7 @@ import numpy as np
 import xarray as xr
 
 from ..paper import classify, criteria
-from .style import plain_log_axis
+from .style import fit_suptitle, fit_texts, place_legend, plain_log_axis
 
 G = criteria.G
 MAX_LINES = 10  # more combinations of the other axes than this: the first ones are drawn
@@ -185,8 +187,9 @@ def _title(ds, study):
     mus = {contact[k] for k in mu_keys}
     friction = (f"μ = {mus.pop():g}" if len(mus) == 1 else
                 ", ".join(f"{k} = {contact[k]:g}" for k in mu_keys))
-    return (f"{ds.attrs.get('title') or 'Rocking spectrum'}\n{motion}: {_peaks_text(ds, ground)}"
-            f"; {friction}, e_x = {contact['e_x']:g}, e_y = {contact['e_y']:g}")
+    return [ds.attrs.get("title") or "Rocking spectrum",
+            f"{motion}: {_peaks_text(ds, ground)}; {friction}, e_x = {contact['e_x']:g}, "
+            f"e_y = {contact['e_y']:g}"]
 
 
 def figure_spectrum(ds, yscale="log"):
@@ -246,7 +249,7 @@ def figure_spectrum(ds, yscale="log"):
                 ax.plot(p_edge, np.full(p_edge.size, bottom), marker, color=colour, ms=6,
                         clip_on=False, label=label)
                 label = None  # one legend entry for every line
-    ax.axhspan(1.0, top, color="0.92", zorder=0)
+    band = ax.axhspan(1.0, top, color="0.92", zorder=0)
     ax.axhline(1.0, color="k", lw=0.8)
     ax.text(0.01, rows[-1], "overturned (×), one row per line",
             transform=ax.get_yaxis_transform(), va="center", fontsize=8.5)
@@ -263,6 +266,7 @@ def figure_spectrum(ds, yscale="log"):
         secondary = ax.secondary_xaxis("top", functions=(_uniform_radius, _uniform_p))
         plain_log_axis(secondary.xaxis)
         secondary.set_xlabel("half-diagonal R = 3g/(4p²) [m]")
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
-    fig.suptitle(_title(ds, classify.study_of(ds)), fontsize=10)
+    fit_suptitle(fig, _title(ds, classify.study_of(ds)))
+    fit_texts(fig)
+    place_legend(ax, background=[band], fontsize=8, framealpha=0.9)
     return fig

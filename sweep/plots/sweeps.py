@@ -9,7 +9,8 @@ displacement.  A figure takes the datasets of one or several sweep studies
 (``python -m sweep.plot A.nc V.nc D.nc --figure fig09 -o fig09.png``), read by
 ``sweep.paper.plane``; Fig. 11 also takes the classification of their overturnings
 (``sweep.paper.classify.classify_dataset``).  An overturning after the excitation stopped is
-not a result of the sweep: it is left out and counted.
+not a result of the sweep: it is left out and counted.  Titles take two lines at most and
+labels are wrapped to the axes (``style.fit_texts``); the legends lie under the plane.
 """
 import textwrap
 
@@ -19,7 +20,7 @@ from matplotlib.lines import Line2D
 
 from ..paper.criteria import POINT_P
 from ..paper.plane import lowest_points, sweep_cells
-from .style import as_list, log_axes
+from .style import as_list, fit_texts, log_axes
 
 HOLD_STYLE = {  # marker and colour of each kind of sweep, as the paper's three symbols
     "acceleration": {"marker": "o", "color": "tab:red"},
@@ -141,6 +142,7 @@ def figure_plane(data, label=None):
     if len(datasets) == 1:  # one study: its own title says what varies
         title += f"\n{datasets[0].attrs.get('title', '')}"
     ax.set_title(title, fontsize=10)
+    fit_texts(fig)
     return fig
 
 
@@ -192,4 +194,5 @@ def figure_boundaries(data, rockings, label=None):
                frameon=False)
     ax.set_title(f"{label + ': ' if label else ''}boundaries of overturning, by the rocking "
                  "before it", fontsize=10)
+    fit_texts(fig)
     return fig
