@@ -191,12 +191,14 @@ def record_buffer(records):
 SceneResult = namedtuple("SceneResult", [
     "status", "message", "overturned", "t_overturn", "overturn_direction", "impact_times",
     "omega_after", "impact_slipped", "impact_count", "impact_log_truncated", "max_abs_theta",
-    "t_rest", "mode_time", "max_slip", "max_lift", "steps", "events", "energy_clamps",
+    "t_rest", "mode_time", "max_slip", "max_travel", "max_lift", "steps", "events", "energy_clamps",
     "t_final", "f_at_overturn", "a_at_overturn", "v_at_overturn", "cpu_s", "history"])
 SceneResult.__doc__ = """Result of one scene: the JSON contract of DESIGN.md section 4 plus
 extras.  ``impact_times``, ``omega_after`` and ``impact_slipped`` hold the first ``max_log``
 impacts of ``impact_count`` (``impact_log_truncated`` when fewer); ``history`` is None or a
-dict of arrays named by ``codes.HISTORY_NAMES``."""
+dict of arrays named by ``codes.HISTORY_NAMES``.  ``max_slip`` is how far the base moved along
+the floor (``extremes.footprint``), ``max_travel`` the largest |x - x0| of G, rotation
+included."""
 
 
 def _nan_to_none(x):
@@ -256,7 +258,8 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
         t_rest=_nan_to_none(res[codes.R_T_REST]),
         mode_time={name: float(res[codes.R_MODE_TIME + m])
                    for m, name in enumerate(codes.MODE_NAMES)},
-        max_slip=float(res[codes.R_MAX_SLIP]), max_lift=float(res[codes.R_MAX_LIFT]),
+        max_slip=float(res[codes.R_MAX_SLIP]), max_travel=float(res[codes.R_MAX_TRAVEL]),
+        max_lift=float(res[codes.R_MAX_LIFT]),
         steps=int(res[codes.R_STEPS]), events=int(res[codes.R_EVENTS]),
         energy_clamps=clamps, t_final=float(res[codes.R_T_END]),
         f_at_overturn=_nan_to_none(res[codes.R_F_AT_OVERTURN]),

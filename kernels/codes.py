@@ -109,11 +109,12 @@ SCENE_DTYPE = np.dtype([(group, _record(names, [GROUND_DTYPE if group == "floor"
 assert SCENE_DTYPE.itemsize == 8 * N_PAR
 
 
-# Per-cell scalar results (float64 row).
+# Per-cell scalar results (float64 row).  R_MAX_SLIP: how far the base moved along the floor
+# (``extremes.footprint``); R_MAX_TRAVEL: the largest |x - x0| of G, rotation included.
 (R_STATUS, R_T_END, R_T_OVERTURN, R_DIRECTION, R_MAX_ABS_THETA, R_IMPACTS, R_T_REST,
  R_MAX_SLIP, R_MAX_LIFT, R_STEPS, R_EVENTS, R_ENERGY_CLAMPS,
- R_F_AT_OVERTURN, R_A_AT_OVERTURN, R_V_AT_OVERTURN) = range(15)
-R_MODE_TIME = 15                      # six entries, seconds in each mode
+ R_F_AT_OVERTURN, R_A_AT_OVERTURN, R_V_AT_OVERTURN, R_MAX_TRAVEL) = range(16)
+R_MODE_TIME = 16                      # six entries, seconds in each mode
 N_RES = R_MODE_TIME + N_MODES
 
 # Impact flag bits (what an impact law did)

@@ -24,11 +24,13 @@ from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTL_CELL, CTL_STOP, CTX
                     CTX_SIGMA, IOMEGA, ITHETA, LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG,
                     N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, R_A_AT_OVERTURN,
                     R_DIRECTION, R_ENERGY_CLAMPS, R_EVENTS, R_F_AT_OVERTURN, R_IMPACTS,
-                    R_MAX_ABS_THETA, R_MAX_LIFT, R_MAX_SLIP, R_MODE_TIME, R_STATUS, R_STEPS,
-                    R_T_END, R_T_OVERTURN, R_T_REST, R_V_AT_OVERTURN, REST, TIME_BUDGET)
+                    R_MAX_ABS_THETA, R_MAX_LIFT, R_MAX_SLIP, R_MAX_TRAVEL, R_MODE_TIME,
+                    R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN, R_T_REST, R_V_AT_OVERTURN, REST,
+                    TIME_BUDGET)
 from .event_search import first_event, polish
 from .events import event_values, n_events
-from .extremes import MAX_LIFT, MAX_SLIP, MAX_THETA, observe, observe_turns
+from .extremes import (BASE_REF, MAX_LIFT, MAX_SLIP, MAX_THETA, MAX_TRAVEL, observe,
+                       observe_turns)
 from .ground import G, amplitudes, ground, ground_end, next_break
 from .history import hold, sample_step
 from .integrate import FIRST_STEP, fit_dense, next_step_size, step
@@ -82,6 +84,7 @@ def _report(res, status, t, t_rest, mode, counts, scene, work):
     res[R_V_AT_OVERTURN] = V if overturned else math.nan
     res[R_MAX_ABS_THETA] = work.extremes[MAX_THETA]
     res[R_MAX_SLIP] = work.extremes[MAX_SLIP]
+    res[R_MAX_TRAVEL] = work.extremes[MAX_TRAVEL]
     res[R_MAX_LIFT] = work.extremes[MAX_LIFT]
     res[R_IMPACTS], res[R_STEPS], res[R_EVENTS], res[R_ENERGY_CLAMPS] = counts
     for m in range(N_MODES):
@@ -148,6 +151,7 @@ def run_scene(row, rec, res, log, hist, ctl):
     if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
         status = PAINLEVE
     t_rest = 0.0 if mode == REST else math.nan
+    extremes[BASE_REF] = math.nan                     # set where the body first touches
     observe(mode, q, body, extremes)
 
     while status == OK and t < t_end:

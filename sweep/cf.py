@@ -38,7 +38,12 @@ STATUS_FLAGS = (tuple(range(len(codes.STATUS_NAMES))), codes.STATUS_NAMES)
 OVERTURNED_FLAGS = ((-1, 0, 1), ("failed", "standing", "overturned"))
 DIRECTION_FLAGS = ((-1, 0, 1), ("negative_theta", "none", "positive_theta"))
 SLID_FLAGS = ((-1, 0, 1), ("failed", "no_slip", "slid"))
-SLID_THRESHOLD = 0.01  # m: a body whose largest slip exceeds this has slid
+SLID_THRESHOLD = 0.01  # m: a body whose base moved further than this along the floor slid
+SLIP_COMMENT = ("how far the footprint of the base (where the middle of the base would be, set "
+                "down flat about the corner it stands on) moved from where the body first "
+                "stood, observed while it touches the floor with |theta| <= alpha: rocking "
+                "about a corner does not move it, sliding and landing elsewhere after a jump "
+                "do, a corner slipping as the body falls past alpha does not")
 MOTION_COMMENT = ("the motion as applied (after scale, pga or pgv); PGV and PGD after a "
                   "zero-phase 0.1 Hz high-pass baseline correction (sweep.groundmotion."
                   "intensity); sines and sweeps: their steady amplitudes")
@@ -55,11 +60,17 @@ VARIABLES = {
                            comment="NaN if the body did not overturn"),
     "overturn_direction": Variable("int8", "1", "sign of theta at overturning",
                                    DIRECTION_FLAGS,
-                                   comment="theta > 0 is rotation about the left corner"),
+                                   comment="theta > 0 is rotation about the left corner: "
+                                           "positive_theta fell towards -x (to the left), "
+                                           "negative_theta towards +x"),
     "max_abs_theta": Variable("float64", "rad", "largest absolute rotation angle"),
     "impact_count": Variable("int32", "1", "number of impacts"),
     "mode_time": Variable("float32", "s", "time spent in each motion type", dims=("mode",)),
-    "max_slip": Variable("float32", "m", "largest slip of G relative to the floor"),
+    "max_slip": Variable("float32", "m", "largest slip of the base along the floor",
+                         comment=SLIP_COMMENT),
+    "max_travel": Variable("float32", "m", "largest horizontal travel of G relative to the "
+                                           "floor",
+                           comment="|x - x0| of the centre of mass, rotation included"),
     "max_lift": Variable("float32", "m", "largest gap under the lowest point of the body"),
     "t_rest": Variable("float64", "s", "time of coming to final rest",
                        comment="NaN if the body did not come to final rest"),
@@ -81,9 +92,8 @@ VARIABLES = {
                                    comment="the paper's normalized velocity (v_H of Eq. 9); "
                                            "NaN if the body did not overturn"),
     "slid": Variable("int8", "1", "body slid", SLID_FLAGS,
-                     comment=f"slid: G moved more than {SLID_THRESHOLD * 100:g} cm beyond what "
-                             "rotation alone explains (b (1 - cos theta) + h sin theta at "
-                             "max_abs_theta); failed: the simulation failed"),
+                     comment=f"slid: max_slip > {SLID_THRESHOLD * 100:g} cm, the base moved "
+                             "further along the floor; failed: the simulation failed"),
     "pga": Variable("float64", "m s-2", "peak ground acceleration of the horizontal motion",
                     comment=MOTION_COMMENT),
     "pgv": Variable("float64", "m s-1", "peak ground velocity of the horizontal motion",
@@ -397,7 +407,7 @@ def history_dataset(history, scene, source=None, result=None):
         result's impact log holds fewer impacts, else 0), ``energy_clamps`` and what the body
         did become attributes: ``status`` (its name), ``t_overturn`` and ``t_rest`` (NaN when
         none), ``overturn_direction`` (0 when none), ``max_abs_theta``, ``max_slip``,
-        ``max_lift`` (units of ``VARIABLES``) and ``mode_time`` [s], one per motion type in the
+        ``max_travel``, ``max_lift`` (units of ``VARIABLES``) and ``mode_time`` [s], one per motion type in the
         order of the ``flag_meanings`` of ``mode``.
     """
     import xarray as xr
@@ -416,7 +426,7 @@ def history_dataset(history, scene, source=None, result=None):
                      t_overturn=_nan_for_none(result.t_overturn),
                      overturn_direction=result.overturn_direction or 0,
                      max_abs_theta=result.max_abs_theta, max_slip=result.max_slip,
-                     max_lift=result.max_lift, t_rest=_nan_for_none(result.t_rest),
+                     max_travel=result.max_travel, max_lift=result.max_lift, t_rest=_nan_for_none(result.t_rest),
                      mode_time=np.array([result.mode_time[m] for m in codes.MODE_NAMES]))
     return xr.Dataset(data, coords={TIME[0]: (TIME[0], np.asarray(history["t"]), TIME[1])},
                       attrs=attrs)

@@ -107,12 +107,12 @@ def _site_json(site, deterministic, probabilistic):
     if probabilistic is None:
         return out
     out["ensemble"] = summary(probabilistic)
-    post, limits = probabilistic.posterior, deterministic["lower_limits"]
+    quantiles, limits = probabilistic.quantiles, deterministic["lower_limits"]
     out["side_by_side"] = {
         key: {"deterministic_lower_limit": None if limits is None else limits[key]["value"],
               "probabilities": list(probabilistic.ensemble.probabilities),
-              "posterior_quantiles": None if post is None else getattr(post, key)}
-        for key in ("pga", "pgv")}
+              "posterior_quantiles": None if quantiles is None else quantiles[k]}
+        for k, key in enumerate(("pga", "pgv"))}
     return out
 
 
@@ -121,7 +121,7 @@ def _csv_rows(site, deterministic, probabilistic):
     probabilities = () if probabilistic is None else probabilistic.ensemble.probabilities
     by_name = {} if probabilistic is None else {b.name: b for b in probabilistic.bodies}
     kept_out = {} if probabilistic is None else dict(probabilistic.excluded)
-    post = None if probabilistic is None else probabilistic.posterior
+    quantiles = None if probabilistic is None else probabilistic.quantiles
     limits = deterministic["lower_limits"]
     rows = []
     for row in deterministic["bodies"]:
@@ -143,9 +143,13 @@ def _csv_rows(site, deterministic, probabilistic):
             out[f"bound_q{q:g}_beyond"] = None if bound is None else bound.beyond
         if probabilities:
             out["slid_near_bound"] = None if body is None else body.slid
+        if probabilities:
+            sup = probabilistic.support
+            out["site_simulations_reproducing"] = None if sup is None else sup.matches
+            out["site_levels_with_likelihood"] = None if sup is None else sup.levels
         for i, q in enumerate(probabilities):
-            out[f"site_pga_q{q:g}_m_s2"] = None if post is None else post.pga[i]
-            out[f"site_pgv_q{q:g}_m_s"] = None if post is None else post.pgv[i]
+            out[f"site_pga_q{q:g}_m_s2"] = None if quantiles is None else quantiles[0][i]
+            out[f"site_pgv_q{q:g}_m_s"] = None if quantiles is None else quantiles[1][i]
         rows.append(out)
     return rows
 

@@ -19,6 +19,14 @@ shaking from below, those left standing (set S) from above:
   the ensemble's mix of PGV/PGA.  Where the likelihood is not 0 at the lowest (highest)
   level, the posterior is cut there by the range of levels, not by the bodies:
   ``cut_below`` and ``cut_above`` say so.
+* **Support.**  The posterior is only as good as the simulations that reproduce every
+  observation (c_jm = 1).  With one such simulation its shape is the triangle of the linear
+  interpolation between the two levels around it, and its percentiles restate the spacing of
+  the levels: with 12 levels and with 24 they differ by a factor 1.5.  The estimate says how
+  many simulations, at how many levels, carry the likelihood (:class:`Support`), and gives no
+  percentiles below :data:`MIN_MATCHES` simulations or :data:`MIN_LEVELS` levels; it says
+  where more levels would help (between the levels around those with L > 0) and that more
+  members would.
 * **Per body.**  Fragility P_i(x_j) = fraction of the members that overturned it, with a 95 %
   Wilson interval; with the same knot at its own a_o.  An overturned body bounds x from below:
   x_lo(q) is the lowest x with P_i(x) = q (overturning below it had probability < q).  A
@@ -67,6 +75,10 @@ MAP_POINTS = 121  # grid points along each axis of the (PGA, PGV) map
 MAP_SUPPORT = 0.5  # the map is blank where the kernel weights (1 at a point) sum below this
 SILVERMAN = 1.06  # normal-reference factor of the bandwidth in ln PGV/PGA
 SLID_MOST = 0.5  # a body is flagged when more than this fraction of the cells near its bound slid
+# The fewest simulations reproducing every body, and the fewest levels with L > 0, that give
+# posterior percentiles: fewer, and the percentiles restate the spacing of the levels.
+MIN_MATCHES = 5
+MIN_LEVELS = 3
 WILSON_CONFIDENCE = 0.95
 
 Specimen = namedtuple("Specimen", "B H i_g mu")
@@ -414,6 +426,62 @@ def posterior(levels, consistent, pgv, probabilities, floor=None):
                      cut_below=bool(mean[0] > 0), cut_above=bool(mean[-1] > 0))
 
 
+@dataclass(frozen=True)
+class Support:
+    """What carries the likelihood of a site.
+
+    Attributes
+    ----------
+    matches : int
+        Simulations (member, level) that reproduce every observation (c_jm = 1).
+    cells : int
+        Simulations counted (failed ones left out).
+    levels : int
+        Levels at which the likelihood is not 0; ``of_levels``: the levels simulated.
+    between : tuple of float or None
+        (low, high) [m/s^2]: the levels around those with L > 0, where more levels would
+        resolve the posterior; None when no level has L > 0.
+    """
+
+    matches: int
+    cells: int
+    levels: int
+    of_levels: int
+    between: tuple
+
+    @property
+    def sufficient(self):
+        """Enough to give percentiles (:data:`MIN_MATCHES`, :data:`MIN_LEVELS`)."""
+        return self.matches >= MIN_MATCHES and self.levels >= MIN_LEVELS
+
+    def text(self):
+        """'3 of 48 simulations (at 2 of 12 levels)'."""
+        return (f"{self.matches} of {self.cells} simulation{'s' if self.cells != 1 else ''} "
+                f"(at {self.levels} of {self.of_levels} level{'s' if self.of_levels != 1 else ''})")
+
+
+def support(levels, consistent):
+    """The :class:`Support` of the likelihood of ``consistent`` (J, M) at ``levels`` (J,)."""
+    c = np.asarray(consistent, dtype=float)
+    hit = np.nansum(c, axis=1) > 0
+    where = np.flatnonzero(hit)
+    between = None if where.size == 0 else (float(levels[max(where[0] - 1, 0)]),
+                                            float(levels[min(where[-1] + 1, len(levels) - 1)]))
+    return Support(int(np.nansum(c)), int(np.sum(np.isfinite(c))), int(hit.sum()), len(levels),
+                   between)
+
+
+def support_advice(sup):
+    """Why the percentiles are withheld, and what to do (or '' when they are given)."""
+    if sup.sufficient:
+        return ""
+    low, high = sup.between
+    return (f"only {sup.text()} reproduce every body; percentiles need at least "
+            f"{MIN_MATCHES} simulations at {MIN_LEVELS} levels, else they restate the spacing "
+            f"of the levels: add levels between {low * 100:.0f} and {high * 100:.0f} gal, or "
+            "more motions")
+
+
 # --- one body ---------------------------------------------------------------------------------
 
 def _crossing(u, p, q, first):
@@ -643,6 +711,8 @@ class SiteEstimate:
     west_floor : float or None
         a_o of the most demanding overturned body [m/s^2].
     map : ConsistencyMap or None
+    support : Support or None
+        What carries the likelihood (None: no body rocks).
     failed_cells : int
     t_end : float
         Simulated time [s].
@@ -661,9 +731,18 @@ class SiteEstimate:
     reason: str
     west_floor: float
     map: ConsistencyMap
+    support: Support
     failed_cells: int
     t_end: float
     datasets: list = field(default_factory=list)
+
+    @property
+    def quantiles(self):
+        """The posterior's (pga, pgv) at the probabilities, or None when there is no
+        posterior or too little :class:`Support` for percentiles."""
+        if self.posterior is None or not self.support.sufficient:
+            return None
+        return self.posterior.pga, self.posterior.pgv
 
 
 def _cells(ds, name):
@@ -701,7 +780,7 @@ def estimate_site(site, ensemble, datasets):
         return SiteEstimate(**common, bodies=[], likelihood=np.full(levels.size, np.nan),
                             counted=np.zeros(levels.size, int), posterior=None,
                             reason="no body that rocks: every body slides (mu < B/H)",
-                            west_floor=None, map=None, failed_cells=0)
+                            west_floor=None, map=None, support=None, failed_cells=0)
     keys = [specimen_key(specimen(b, ensemble)) for b in rocking]
     overturned = np.stack([_cells(datasets[k], "overturned") for k in keys])
     slid = np.stack([_cells(datasets[k], "slid") for k in keys])
@@ -717,6 +796,7 @@ def estimate_site(site, ensemble, datasets):
         "each other under this ensemble (or the levels miss the band where they agree)")
     return SiteEstimate(**common, bodies=bodies, likelihood=mean, counted=counted,
                         posterior=post, reason=reason, west_floor=floor,
+                        support=support(levels, consistent),
                         map=consistency_map(levels, pga, pgv, consistent,
                                             ensemble.probabilities),
                         failed_cells=int(np.sum(~np.isfinite(overturned))),
@@ -745,7 +825,8 @@ def summary(estimate):
     """The estimate of a site as a JSON-ready dict, SI units; lists of probabilities are in
     the order of ``probabilities``."""
     ens = estimate.ensemble
-    post, m = estimate.posterior, estimate.map
+    post, m, sup = estimate.posterior, estimate.map, estimate.support
+    quantiles = estimate.quantiles
     return {
         "members": estimate.members, "levels": list(ens.levels), "t_end": estimate.t_end,
         "probabilities": list(ens.probabilities), "mu_default": ens.mu,
@@ -760,9 +841,17 @@ def summary(estimate):
                     "slid_near_bound": b.slid, "slid_flag": b.slid_near_bound}
                    for b in estimate.bodies],
         "likelihood": estimate.likelihood, "members_counted": estimate.counted,
+        "support": None if sup is None else {
+            "simulations_reproducing": sup.matches, "simulations": sup.cells,
+            "levels_with_likelihood": sup.levels, "levels": sup.of_levels,
+            "sufficient": sup.sufficient, "minimum": {"simulations": MIN_MATCHES,
+                                                      "levels": MIN_LEVELS},
+            "add_levels_between": None if sup.between is None else list(sup.between)},
         "posterior": None if post is None else {
-            "prior": PRIOR, "pga": post.pga, "pgv": post.pgv, "cut_below": post.cut_below,
-            "cut_above": post.cut_above, "west_floor": estimate.west_floor},
+            "prior": PRIOR, "pga": None if quantiles is None else quantiles[0],
+            "pgv": None if quantiles is None else quantiles[1], "cut_below": post.cut_below,
+            "cut_above": post.cut_above, "west_floor": estimate.west_floor,
+            "percentiles_withheld": support_advice(sup)},
         "posterior_note": estimate.reason,
         "region": None if m is None else {
             "method": MAP_METHOD, "bandwidth_ln_pga": m.bandwidth[0],
@@ -829,15 +918,21 @@ def format_text(estimate, lower_limits=None, width=92):
     if post is None:
         lines.append(textwrap.fill(f"No posterior: {estimate.reason}.", width))
         return "\n".join(lines)
-    lines.append(f"The site's shaking given every body (posterior, prior {PRIOR}):")
-    head = f"{'':<12} {'deterministic':>16}  " + "  ".join(f"{q:>7.0%}" for q in
-                                                           ens.probabilities)
-    lines.append(head)
-    for key, values, unit, shown in (("pga", post.pga, "gal", _gal),
-                                     ("pgv", post.pgv, "cm/s", lambda v: f"{v * 100:.3g}")):
+    lines.append(textwrap.fill(
+        f"The site's shaking given every body (posterior, prior {PRIOR}), carried by "
+        f"{estimate.support.text()} that reproduce every body:", width))
+    quantiles = estimate.quantiles
+    head = f"{'':<12} {'deterministic':>16}  " + ("  ".join(
+        f"{q:>7.0%}" for q in ens.probabilities) if quantiles else "")
+    lines.append(head.rstrip())
+    for k, (key, unit, shown) in enumerate((("pga", "gal", _gal),
+                                            ("pgv", "cm/s", lambda v: f"{v * 100:.3g}"))):
         limit = "" if lower_limits is None else f">= {shown(lower_limits[key]['value'])}"
-        lines.append(f"{key.upper() + ' [' + unit + ']':<12} {limit:>16}  "
-                     + "  ".join(f"{shown(v):>7}" for v in values))
+        values = "  ".join(f"{shown(v):>7}" for v in quantiles[k]) if quantiles else ""
+        lines.append(f"{key.upper() + ' [' + unit + ']':<12} {limit:>16}  {values}".rstrip())
+    if not quantiles:
+        lines.append(textwrap.fill(f"  Percentiles withheld: {support_advice(estimate.support)}.",
+                                   width, subsequent_indent="  "))
     if post.cut_below or post.cut_above:
         ends = [end for end, cut in (("lowest", post.cut_below), ("highest", post.cut_above))
                 if cut]

@@ -84,19 +84,6 @@ def build_rows(study, cells):
     return rows, api.record_buffer(buffer), bodies, motions, problems
 
 
-def slid(max_slip, max_abs_theta, B, H):
-    """True where the body slid more than ``cf.SLID_THRESHOLD``.
-
-    ``max_slip`` is the largest horizontal offset of G from its start; rotation alone by up to
-    theta about a corner moves G by at most b (1 - cos theta) + h sin theta (theta <= pi/2),
-    so the base slipped by at least the excess of ``max_slip`` over that: a conservative flag
-    (a slip hidden behind a larger rotation the other way is not counted).
-    """
-    theta = np.minimum(max_abs_theta, 0.5 * np.pi)
-    by_rotation = 0.5 * B * (1.0 - np.cos(theta)) + 0.5 * H * np.sin(theta)
-    return max_slip - by_rotation > cf.SLID_THRESHOLD
-
-
 def summarize(results, bodies, motions):
     """Per-cell arrays of ``cf.VARIABLES`` from kernel result rows (n, N_RES), the cells'
     bodies and motions (``build_rows``)."""
@@ -124,6 +111,7 @@ def summarize(results, bodies, motions):
         "impact_count": results[:, codes.R_IMPACTS],
         "mode_time": results[:, codes.R_MODE_TIME:codes.R_MODE_TIME + codes.N_MODES],
         "max_slip": results[:, codes.R_MAX_SLIP],
+        "max_travel": results[:, codes.R_MAX_TRAVEL],
         "max_lift": results[:, codes.R_MAX_LIFT],
         "t_rest": results[:, codes.R_T_REST],
         "steps": results[:, codes.R_STEPS],
@@ -131,7 +119,7 @@ def summarize(results, bodies, motions):
         "f_at_overturn": results[:, codes.R_F_AT_OVERTURN],
         "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / criteria.west_acceleration(B, H),
         "v_norm_at_overturn": results[:, codes.R_V_AT_OVERTURN] / v_H,
-        "slid": np.where(failed, -1, slid(results[:, codes.R_MAX_SLIP], theta, B, H)),
+        "slid": np.where(failed, -1, results[:, codes.R_MAX_SLIP] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
     }

@@ -14,7 +14,7 @@ from ..io.plausibility import scene_doubts
 from ..io.problems import FileProblems, Problem, warn
 from ..io.records import floor_provenance
 from ..io.scene_schema import MAX_HISTORY, load_scene, resolve_scene
-from .verdict import verdict
+from .verdict import fall_side, verdict
 
 # The keys of DESIGN.md section 4 that scripts read: every one is in the JSON.
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
@@ -22,19 +22,21 @@ JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact
              "steps", "cpu_s")
 MOTION_KEYS = ("pga", "pgv", "pgd")
 # The JSON's order: the verdict and the numbers that sum the scene up, then the per-impact arrays.
-SUMMARY_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "message",
-                "max_abs_theta", "alpha", "max_slip", "max_lift", *MOTION_KEYS, "t_rest",
-                "mode_time", "impact_count", "impact_log_truncated", "energy_clamps", "steps",
-                "cpu_s")
+SUMMARY_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "overturn_towards",
+                "message", "max_abs_theta", "alpha", "max_slip", "max_travel", "max_lift",
+                *MOTION_KEYS, "t_rest", "mode_time", "impact_count", "impact_log_truncated",
+                "energy_clamps", "steps", "cpu_s")
 IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
 PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file was read
 
-Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS + ("B", "H", "alpha",
-                                                                   PROVENANCE_KEY))
+Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS
+                    + ("B", "H", "alpha", "overturn_towards", PROVENANCE_KEY))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
-``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), and the body:
-breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad], and the
-``provenance`` of each floor component that is a record (``records.floor_provenance``)."""
+``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), the body:
+breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad],
+``overturn_towards``: the way the body fell, ``"-x"`` (to the left, ``overturn_direction``
++1) or ``"+x"``, None when it stands (``verdict.fall_side``), and the ``provenance`` of each
+floor component that is a record (``records.floor_provenance``)."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
@@ -61,8 +63,9 @@ def simulate(scene, history=False, max_log=MAX_LOG):
         _check_history(resolved, None if isinstance(scene, dict) else scene)
     motion = applied.peaks(resolved["excitation"]["horizontal"])
     B, H = resolved["body"]["B"], resolved["body"]["H"]
-    result = Result(*run_scene(resolved, history=history, max_log=max_log), *motion[:3], B, H,
-                    math.atan2(B, H), floor_provenance(resolved["excitation"]))
+    ran = run_scene(resolved, history=history, max_log=max_log)
+    result = Result(*ran, *motion[:3], B, H, math.atan2(B, H),
+                    fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]))
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)

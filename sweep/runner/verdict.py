@@ -1,26 +1,29 @@
 """What one scene did, in words: the line ``python -m sweep.scene`` prints first and the title
-of its plot, e.g. "overturned at t = 3.41 s towards −θ after 12 impacts" or "stood: max |θ|/α
-0.38, no slip, 79 impacts, modes: rotation 9.97 s".
+of its plot, e.g. "overturned at t = 3.41 s: fell towards +x (right) after 12 impacts" or
+"stood: max |θ|/α 0.38, no slip, 79 impacts, modes: rotation 9.97 s".
 
-θ > 0 is rotation about the left corner; α = atan(B/H) is the slenderness angle, so a body
-overturns when |θ|/α passes 1 with too much speed to fall back.
+θ > 0 is rotation about the left corner, so a body that overturns with θ > 0 falls towards −x
+(to the left); α = atan(B/H) is the slenderness angle, so a body overturns when |θ|/α passes
+1 with too much speed to fall back.  The slip is the base's (``kernels.extremes``): how far
+its footprint moved along the floor, which rocking about a corner leaves in place.
 """
 import math
 
 from kernels.codes import MODE_NAMES
 
 MOTION_MODES = MODE_NAMES[1:]  # every motion type but rest
-# Motion types in which the base can move along the floor (in rest and rotation it cannot).
-SLIP_MODES = tuple(mode for mode in MOTION_MODES if mode != "rotation")
 SHOWN_LENGTH = 1e-3  # m: a slip or lift smaller than this is not worth a word
 
 
-def slip_of_base(max_slip, max_abs_theta, B, H):
-    """How far the base slipped at least [m]: the largest offset of G from its start beyond
-    b (1 - cos theta) + h sin theta, the most that rotation about a corner by up to
-    ``max_abs_theta`` carries it (as ``runner.cells.slid`` reckons)."""
-    theta = min(max_abs_theta, 0.5 * math.pi)
-    return max(0.0, max_slip - 0.5 * B * (1.0 - math.cos(theta)) - 0.5 * H * math.sin(theta))
+# overturn_direction (the sign of theta at overturning) -> the way the body fell, in x
+FALL_SIDES = {1: "-x", -1: "+x"}
+FALL_WORDS = {"-x": "−x (left)", "+x": "+x (right)"}
+
+
+def fall_side(direction):
+    """'-x' or '+x': the way a body fell whose theta reached the overturning angle with the
+    sign ``direction`` (+1: about the left corner, so to the left); None when it did not."""
+    return FALL_SIDES.get(direction)
 
 
 def length_text(metres):
@@ -42,15 +45,15 @@ def verdict(results):
     ----------
     results : mapping
         ``status``, ``t_overturn`` [s], ``overturn_direction`` (+1, -1), ``impact_count``,
-        ``max_abs_theta`` [rad], ``B`` and ``H`` [m], ``max_slip`` [m] (of G: the slip of
-        the base is :func:`slip_of_base`), ``max_lift`` [m], ``mode_time`` ({mode name:
+        ``max_abs_theta`` [rad], ``B`` and ``H`` [m], ``max_slip`` [m] (of the base),
+        ``max_lift`` [m], ``mode_time`` ({mode name:
         s}), ``t_rest`` [s, or None or NaN] and ``t_final`` [s] (the ``Result`` of
         ``sweep.runner.simulate`` as a dict has them all).
     """
     impacts = _impacts(results["impact_count"])
     if results["status"] == "overturned":
-        side = "+θ" if results["overturn_direction"] > 0 else "−θ"
-        return (f"overturned at t = {results['t_overturn']:.2f} s towards {side} "
+        side = FALL_WORDS[fall_side(results["overturn_direction"])]
+        return (f"overturned at t = {results['t_overturn']:.2f} s: fell towards {side} "
                 f"{'after' if results['impact_count'] else 'with'} {impacts}")
     moved = sorted(((time, mode) for mode, time in results["mode_time"].items()
                     if mode in MOTION_MODES and time > 0), reverse=True)
@@ -61,9 +64,7 @@ def verdict(results):
     else:
         head = "stood"
     alpha = math.atan2(results["B"], results["H"])
-    slipped = any(mode in SLIP_MODES for _, mode in moved)
-    slip = slip_of_base(results["max_slip"], results["max_abs_theta"], results["B"],
-                        results["H"]) if slipped else 0.0
+    slip = results["max_slip"]
     parts = [f"max |θ|/α {results['max_abs_theta'] / alpha:.2g}",
              f"max slip {length_text(slip)}" if slip > SHOWN_LENGTH else "no slip"]
     if results["max_lift"] > SHOWN_LENGTH:

@@ -1,7 +1,7 @@
 """Flat sliding, Newmark's rigid-plastic block (PHYSICS.md 1.2 (2) and anchor A6).
 
 B = H = 0.3 m (b/h = 1 above every mu used, so the block slides without rocking); max_slip
-is the largest |x - x0| of G relative to the floor.
+is how far the base moved along the floor, here G's travel |x - x0| as well.
 """
 import math
 

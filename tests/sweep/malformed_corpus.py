@@ -288,6 +288,8 @@ RECORDS = {  # file name, contents, expected exit
     "dt_inf.AT2": (_at2("NPTS= 3, DT= 1e400 SEC", "0.1 0.2 0.3"), BAD),
     "dt_zero.AT2": (_at2("NPTS= 3, DT= 0 SEC", "0.1 0.2 0.3"), BAD),
     "dt_nan.AT2": (_at2("NPTS= 3, DT= nan SEC", "0.1 0.2 0.3"), BAD),
+    "dt_1e-300.AT2": (_at2("NPTS= 3, DT= 1e-300 SEC", "0.1 0.2 0.3"), BAD),
+    "dt_1e6.AT2": (_at2("NPTS= 3, DT= 1e6 SEC", "0.1 0.2 0.3"), BAD),
     "npts_huge.AT2": (_at2("NPTS= " + "9" * 5000 + ", DT= .01 SEC", "0.1 0.2"), BAD),
     "npts_mismatch.AT2": (_at2("NPTS= 1000000000000, DT= .01 SEC", "0.1 0.2"), BAD),
     "short.AT2": (b"only\ntwo lines\n", BAD),

@@ -32,7 +32,7 @@ BY_NAME = {case.name: case for case in CASES}
 # a problem line: "  <dotted path | (file) | line L, column C>: message"
 LOCATED = re.compile(r"^\s+(\(file\)|line \d+, column \d+|[\w\[\]]+(\.[\w\[\]]+)*): ", re.M)
 SUBPROCESS_CASES = ("scene:alias_bomb", "scene:deep_list", "record:tiny_step.txt",
-                    "record:nan.AT2", "smoke:nul_byte", "grid:1e7_cells", "bodies:key_on",
+                    "record:nan.AT2", "record:dt_1e-300.AT2", "smoke:nul_byte", "grid:1e7_cells", "bodies:key_on",
                     "bodies:binary")
 
 Outcome = namedtuple("Outcome", "code stdout stderr seconds hang before after")

@@ -16,14 +16,15 @@ from sweep import plot, scene
 from sweep.io.scene_schema import MAX_HISTORY, resolve_scene
 from sweep.plots.map import figure_map
 from sweep.plots.scene import draw_scene
-from sweep.runner.simulate import JSON_KEYS, simulate
+from sweep.runner.simulate import JSON_KEYS, simulate, to_json_dict
 from sweep.runner.store import write_netcdf
 
 matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parents[2]
 STEADY = ROOT / "studies" / "steady_rocking.yaml"  # 79 impacts in 10 s
-VERDICT_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "message")
+VERDICT_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "overturn_towards",
+                "message")
 G = 9.80665  # standard gravity [m/s^2]
 BLOCK = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 10, "e_x": 0.0, "e_y": 0.0}}
 FALLING = {**BLOCK, "excitation": {"horizontal": {"kind": "sine", "amplitude": "2.5 west",
@@ -50,7 +51,7 @@ def test_json_has_the_verdict_first_and_each_array_on_one_line():
 
 @pytest.mark.parametrize("source, first, status", [
     (STEADY, "stood: max |θ|/α 0.38, no slip, 79 impacts, modes: rotation 10 s", "ok"),
-    (FALLING, "overturned at t = 0.44 s towards +θ with no impact", "overturned")])
+    (FALLING, "overturned at t = 0.44 s: fell towards −x (left) with no impact", "overturned")])
 def test_summary_is_what_the_body_did_then_the_status(tmp_path, capsys, source, first, status):
     if isinstance(source, dict):
         source = tmp_path / "falling.yaml"
@@ -59,6 +60,20 @@ def test_summary_is_what_the_body_did_then_the_status(tmp_path, capsys, source, 
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 2 and lines[0] == first
     assert lines[1].startswith(f"{status}: ")
+
+
+@pytest.mark.parametrize("sign, towards", [(1.0, "-x"), (-1.0, "+x")])
+def test_the_side_of_a_fall_is_where_the_body_lies(sign, towards):
+    """A floor pushed right first tips the body over its left corner (theta > 0): it falls
+    towards -x, where its centre of mass ends; the mirrored motion mirrors everything."""
+    scene_ = copy.deepcopy(FALLING)
+    scene_["excitation"]["horizontal"]["amplitude"] = f"{2.5 * sign} west"
+    result = simulate(scene_, history=True)
+    assert result.overturned and result.overturn_direction == sign
+    assert result.overturn_towards == towards
+    x_end = result.history["x"].values[-1]
+    assert np.sign(x_end) == -sign and abs(x_end) > BLOCK["body"]["B"] / 2
+    assert to_json_dict(result)["overturn_towards"] == towards
 
 
 def test_history_of_a_record_keeps_its_peak():

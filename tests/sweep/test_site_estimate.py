@@ -125,6 +125,55 @@ def test_identical_members_give_zero_one_and_bracketing_bounds():
     np.testing.assert_array_equal(result.likelihood, [0, 0, 0, 1, 1, 1, 0, 0, 0])
     assert np.all((result.posterior.pga >= levels[2]) & (result.posterior.pga <= levels[6]))
     assert not result.posterior.cut_below and not result.posterior.cut_above
+    # 3 members x 3 levels reproduce both bodies: enough for percentiles
+    assert result.support == site.Support(9, 27, 3, 9, (levels[2], levels[6]))
+    assert result.quantiles is not None
+
+
+def _survey_of_steps(fallen, stood, levels=9):
+    """Survey of one body seen overturned and one standing, three identical-shaped members,
+    each overturning the bodies from the level indices ``fallen[m]`` and ``stood[m]`` up."""
+    survey = load_survey({"site": "s", "bodies": [
+        {"name": "fallen", "B": "20 cm", "H": "80 cm", "overturned": True},
+        {"name": "stood", "B": "30 cm", "H": "60 cm", "overturned": False}],
+        "ensemble": {"motions": {"record": RECORDS},
+                     "levels": {"pga": {"start": "1 m/s^2", "stop": "16 m/s^2",
+                                        "num": levels}}}})
+    ens = survey.ensemble
+    x = np.array(ens.levels)
+    datasets = {}
+    for body, steps in zip(survey.sites[0].bodies, (fallen, stood)):
+        o = np.arange(x.size)[:, None] >= np.array(steps)[None, :]
+        datasets[site.specimen_key(site.specimen(body, ens))] = _fake_dataset(
+            o, 0.1 * x[:, None] * np.ones(3))
+    return survey, x, site.estimate_site(survey.sites[0], ens, datasets)
+
+
+def test_percentiles_on_one_matching_simulation_are_withheld():
+    """Member 0 reproduces both bodies at level 3 alone (the fallen body goes over from level
+    3, the standing one from 4); the other two members never: 1 of 27 simulations, at 1 of 9
+    levels.  The posterior is the interpolation's triangle on [x_2, x_4], whose percentiles
+    are the level spacing: none are given, in the text, the JSON or the CSV, and the advice
+    names the levels around x_3."""
+    survey, x, result = _survey_of_steps(fallen=(3, 5, 7), stood=(4, 5, 7))
+    np.testing.assert_array_equal(result.likelihood, [0, 0, 0, 1 / 3, 0, 0, 0, 0, 0])
+    assert result.support == site.Support(1, 27, 1, 9, (x[2], x[4]))
+    assert not result.support.sufficient and result.quantiles is None
+    assert result.posterior is not None  # the density is still there to be drawn
+    text = site.format_text(result)
+    assert "1 of 27 simulations (at 1 of 9 levels)" in text
+    assert "Percentiles withheld" in text
+    assert f"add levels between {x[2] * 100:.0f} and {x[4] * 100:.0f} gal" in " ".join(
+        text.split())
+    summary = site.summary(result)
+    assert summary["posterior"]["pga"] is None and summary["posterior"]["pgv"] is None
+    assert summary["support"]["simulations_reproducing"] == 1
+    assert summary["support"]["sufficient"] is False
+    # five matches at three levels are enough: member 0 at levels 3-5, member 1 at 5-6
+    _, _, enough = _survey_of_steps(fallen=(3, 5, 7), stood=(6, 7, 7))
+    assert (enough.support.matches, enough.support.levels) == (5, 4)
+    assert enough.quantiles is not None and "Percentiles withheld" not in site.format_text(
+        enough)
 
 
 # --- (4) West's level in a real ensemble ------------------------------------------------------

@@ -20,6 +20,10 @@ from ..units import fixed_factor
 # dt = 0.01 s.  A file of a few rows whose median step is tiny would otherwise be resampled
 # into terabytes.
 MAX_SAMPLES = 10_000_000
+# Sample steps a record may have [s]: 100 kHz to 1 Hz.  Accelerographs sample at 50-1000 Hz; a
+# step outside these bounds is a misread header, and the baseline correction would pad it
+# with PAD_S / dt zeros.
+MIN_DT, MAX_DT = 1e-5, 1.0
 _MAX_VALUES = 2 * MAX_SAMPLES  # numbers a file may hold: two columns of MAX_SAMPLES rows
 
 
@@ -222,16 +226,17 @@ def make_record(path, dt, samples, provenance, units="m/s^2", reading=None):
     Raises
     ------
     RecordError
-        Fewer than two samples or more than :data:`MAX_SAMPLES`, a step that is not a positive
-        finite number, or a sample that left the float range in the conversion to m/s^2.
+        Fewer than two samples or more than :data:`MAX_SAMPLES`, a step outside
+        [:data:`MIN_DT`, :data:`MAX_DT`], or a sample that left the float range in the
+        conversion to m/s^2.
     """
     if len(samples) < 2:
         raise RecordError(f"{path}: needs at least two samples")
     if len(samples) > MAX_SAMPLES:
         raise RecordError(f"{path}: {len(samples)} samples, more than {MAX_SAMPLES}")
-    if not 0.0 < dt < np.inf:
-        raise RecordError(f"{path}: the sample step must be a positive number of seconds, "
-                          f"got {dt}")
+    if not MIN_DT <= dt <= MAX_DT:
+        raise RecordError(f"{path}: the sample step must be between {MIN_DT:g} and "
+                          f"{MAX_DT:g} s (a sampling rate of 1 Hz to 100 kHz), got {dt:g} s")
     samples = np.ascontiguousarray(samples, dtype=np.float64)
     bad = np.flatnonzero(~np.isfinite(samples))
     if bad.size:
