@@ -17,14 +17,13 @@ figure per site (``FIG_<site>.png`` with several sites).  The simulations are ke
 ``results/<file stem>/`` beside the bodies file and reused while their inputs are unchanged;
 ``--write-study DIR`` only writes the studies, for ``python -m sweep.run`` on a cluster.
 """
-import csv
 import re
 import sys
 from pathlib import Path
 
 from .cli import argument_parser, command, print_json
 from .io.bodies_schema import load_bodies, load_survey  # noqa: F401  (load_bodies: one site)
-from .io.files import output_problems, replacing
+from .io.files import output_problems, write_csv
 from .io.problems import MISSING, FileProblems, Problem, reported
 from .paper.estimate import estimate, format_text
 
@@ -154,14 +153,6 @@ def _csv_rows(site, deterministic, probabilistic):
     return rows
 
 
-def _write_csv(path, rows):
-    columns = list(dict.fromkeys(key for row in rows for key in row))
-    with replacing(path) as tmp, open(tmp, "w", newline="") as f:
-        writer = csv.DictWriter(f, columns)
-        writer.writeheader()
-        writer.writerows({k: "" if v is None else v for k, v in row.items()} for row in rows)
-
-
 def _figures(paths, results):
     import matplotlib
 
@@ -213,8 +204,8 @@ def main(argv=None):
     else:
         print("\n\n".join(_site_text(s, d, p) for s, (d, p) in zip(survey.sites, results)))
     if args.csv:
-        _write_csv(args.csv, [row for s, (d, p) in zip(survey.sites, results)
-                              for row in _csv_rows(s, d, p)])
+        write_csv(args.csv, [row for s, (d, p) in zip(survey.sites, results)
+                             for row in _csv_rows(s, d, p)])
     if args.output:
         _figures(figure_paths(args.output, survey.sites), results)
     return 0

@@ -16,6 +16,7 @@ takes two lines at most; each legend sits in a corner free of data, else outside
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ..probability.fragility import counted
 from .style import GAL, fit_suptitle, fit_texts, place_legends, plain_log_axis
 
 CM = 100.0  # cm/s per m/s
@@ -83,11 +84,17 @@ def _posterior_panel(ax, estimate, lower_limits):
         ax.plot(knots, post.density, color=QUANTILE_COLOUR, lw=1.5,
                 label="posterior (prior uniform in ln PGA)")
         top = float(np.max(post.density))
-        for q, x in zip(estimate.ensemble.probabilities, post.pga):
+        quantiles = estimate.quantiles
+        for q, x in zip(estimate.ensemble.probabilities, () if quantiles is None else
+                        quantiles[0]):
             ax.axvline(x / GAL, color=QUANTILE_COLOUR, lw=1.0, ls="--")
             ax.text(x / GAL, 1.08 * top, f"{q:.0%}\n{_gal(x)}", ha="center", va="bottom",
                     fontsize=8, color=QUANTILE_COLOUR,
                     bbox={"fc": "white", "ec": "none", "pad": 1.0})
+        if quantiles is None:
+            ax.text(0.02, 0.97, f"percentiles withheld: carried by only\n"
+                    f"{estimate.support.text()}", transform=ax.transAxes, ha="left",
+                    va="top", fontsize=8, color=QUANTILE_COLOUR)
         ax.set_ylim(0, 1.4 * top)
     _deterministic(ax, lower_limits)
     ax.set_xlim(estimate.ensemble.levels[0] / GAL, estimate.ensemble.levels[-1] / GAL)
@@ -144,15 +151,17 @@ def _heading(estimate, lower_limits):
     where = "" if site.latitude is None else \
         f" ({site.latitude:g}° N, {site.longitude:g}° E)" if site.longitude is not None \
         else f" ({site.latitude:g}° N)"
-    first = (f"{site.name or 'site'}{where}: {len(estimate.bodies)} bodies under "
-             f"{len(estimate.members)} motions ({', '.join(estimate.members[:4])}"
+    first = (f"{site.name or 'site'}{where}: {len(estimate.bodies)} bod{'y' if len(estimate.bodies) == 1 else 'ies'} under "
+             f"{counted(len(estimate.members), 'motion')} ({', '.join(estimate.members[:4])}"
              f"{', ...' if len(estimate.members) > 4 else ''}) x "
              f"{len(estimate.ensemble.levels)} PGA levels")
     second = []
-    if estimate.posterior is not None:
-        qs = " / ".join(_gal(x) for x in estimate.posterior.pga)
+    if estimate.quantiles is not None:
+        qs = " / ".join(_gal(x) for x in estimate.quantiles[0])
         probabilities = " / ".join(f"{q:.0%}" for q in estimate.ensemble.probabilities)
         second.append(f"PGA at {probabilities}: {qs} gal")
+    elif estimate.posterior is not None:
+        second.append(f"percentiles withheld ({estimate.support.text()})")
     if lower_limits is not None:
         second.append(f"deterministic a_o ≥ {_gal(lower_limits['pga']['value'])} gal")
     if estimate.excluded:

@@ -69,6 +69,7 @@ from ..io import records
 from ..io.scene_schema import T_TAIL
 from ..paper import criteria
 from ..paper import estimate as paper_estimate
+from .fragility import counted
 
 ARIAS_END = 0.95  # a motion "ends" when 95 % of its Arias intensity has arrived
 MAP_POINTS = 121  # grid points along each axis of the (PGA, PGV) map
@@ -168,7 +169,8 @@ def simulated_time(ensemble):
 
 def study_dict(spec, ensemble, t_end, output, name="site"):
     """The study of one specimen under the ensemble: grid ``pga`` (levels) x ``record`` or
-    ``seed`` (members), in that order; SI numbers, absolute paths."""
+    ``seed`` (members), in that order; SI numbers (the levels with their unit, so that low
+    ones are not taken for bare g), absolute paths."""
     body = {"B": spec.B, "H": spec.H, **({} if spec.i_g is None else {"i_g": spec.i_g})}
     contact = {"mu": spec.mu, **{k: v for k, v in (("e_x", ensemble.e_x), ("e_y", ensemble.e_y))
                                  if v is not None}}
@@ -186,7 +188,7 @@ def study_dict(spec, ensemble, t_end, output, name="site"):
                      "under a site's ensemble of motions (sweep.estimate)",
             "scene": {"body": body, "contact": contact,
                       "excitation": {"horizontal": excitation}, "solver": {"t_end": t_end}},
-            "grid": {"pga": list(ensemble.levels), **members},
+            "grid": {"pga": {"values": list(ensemble.levels), "unit": "m/s^2"}, **members},
             "output": str(Path(output).resolve())}
 
 
@@ -885,12 +887,14 @@ def format_text(estimate, lower_limits=None, width=92):
     levels = ens.levels
     qs = " / ".join(f"{q:.0%}" for q in ens.probabilities)
     lines = [textwrap.fill(
-        f"Ensemble: {len(estimate.members)} motions ({', '.join(estimate.members[:6])}"
+        f"Ensemble: {counted(len(estimate.members), 'motion')} "
+        f"({', '.join(estimate.members[:6])}"
         f"{', ...' if len(estimate.members) > 6 else ''}) scaled to {len(levels)} PGA levels "
         f"from {_gal(levels[0])} to {_gal(levels[-1])} gal, simulated for "
         f"{estimate.t_end:.1f} s; mu = {ens.mu:g} for the bodies that give none.", width)]
     if estimate.failed_cells:
-        lines.append(f"{estimate.failed_cells} simulations failed; left out of the counts.")
+        lines.append(f"{counted(estimate.failed_cells, 'simulation')} failed; left out of the "
+                     "counts.")
     for name, reason in estimate.excluded:
         lines.append(textwrap.fill(f"Kept out: {name}: {reason}.", width,
                                    subsequent_indent="  "))

@@ -7,6 +7,7 @@ import json
 import math
 import time
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 import xarray as xr
@@ -14,6 +15,7 @@ import yaml
 
 from sweep import estimate
 from sweep.io.bodies_schema import load_survey
+from sweep.plots.site import figure_site
 from sweep.probability import site
 from study_helpers import cli
 
@@ -169,6 +171,11 @@ def test_percentiles_on_one_matching_simulation_are_withheld():
     assert summary["posterior"]["pga"] is None and summary["posterior"]["pgv"] is None
     assert summary["support"]["simulations_reproducing"] == 1
     assert summary["support"]["sufficient"] is False
+    fig = figure_site(result)
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert any("percentiles withheld" in t and "1 of 27 simulations" in t for t in texts)
+    assert not any(t.startswith(("5%\n", "50%\n", "95%\n")) for t in texts)
+    plt.close(fig)
     # five matches at three levels are enough: member 0 at levels 3-5, member 1 at 5-6
     _, _, enough = _survey_of_steps(fallen=(3, 5, 7), stood=(6, 7, 7))
     assert (enough.support.matches, enough.support.levels) == (5, 4)
@@ -276,7 +283,8 @@ def test_command_json_csv_and_figures(yard, tmp_path, capsys):
         rows = list(csv.DictReader(f))
     assert [(r["site"], r["body"]) for r in rows] == [
         ("yard", "slim"), ("yard", "stout"), ("yard", "slab"), ("field", "slim")]
-    assert rows[0]["latitude"] == "35.0" and rows[0]["bound"] == "lower"
+    assert rows[0]["latitude"] == "35" and rows[0]["bound"] == "lower"
+    assert (rows[0]["B_m"], rows[0]["H_m"]) == ("0.2", "0.8")  # 20 cm, 80 cm: no float noise
     assert rows[2]["bound"] == "" and "slides" in rows[2]["excluded"]
     assert (tmp_path / "f_yard.png").stat().st_size > 10_000
     assert (tmp_path / "f_field.png").stat().st_size > 10_000
