@@ -266,6 +266,7 @@ def run_scene(row, rec, res, log, hist, ctl):
             break
         if mode == REST:
             t_rest = t
+        observe(mode, q, body, extremes)                # a landing: the base's first footprint
         if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
             status = PAINLEVE
 

@@ -136,12 +136,12 @@ def test_a_run_killed_after_its_dataset_was_written_finishes_its_clean_up(tmp_pa
     assert "already complete for these inputs; removed the part files" in again.stderr
     assert not parts.directory.exists() and (tmp_path / "r.nc").stat().st_mtime_ns == stamp
     # parts of other inputs beside the dataset are no such leftover: kept
-    parts.prepare(load_study(dict(small_study, grid={"amplitude": [0.5, 1.0]})))
+    other_grid = {"amplitude": {"values": [0.5, 1.0], "unit": "west"}}
+    parts.prepare(load_study(dict(small_study, grid=other_grid)))
     kept = cli([study], cwd=tmp_path)
     assert kept.returncode == 0 and "removed" not in kept.stderr and parts.directory.exists()
     # a dataset of other inputs is never taken for done
-    other = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc",
-                                                 grid={"amplitude": [0.5, 1.0]}))
+    other = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc", grid=other_grid))
     refused = cli([other], cwd=tmp_path)
     assert refused.returncode == 2 and "exists; run with --force" in refused.stderr
 
