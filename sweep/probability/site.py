@@ -59,6 +59,7 @@ python -m sweep.run DIR/<key>.yaml`` runs each, and the estimate then reads thei
 SI units throughout.
 """
 import math
+import warnings
 from collections import namedtuple
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,6 +67,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import records
+from ..io.problems import InputWarning
 from ..io.scene_schema import T_TAIL
 from ..paper import criteria
 from ..paper import estimate as paper_estimate
@@ -223,7 +225,9 @@ class RunFailed(RuntimeError):
 def _run_study(path):
     """The dataset of the study at ``path`` and whether it was computed now: its output when
     the fingerprint of its inputs matches, else computed by ``python -m sweep.run`` in this
-    process (``--force`` when the output or part files hold other inputs)."""
+    process (``--force`` when the output or part files hold other inputs).  Its doubts of
+    the PGA levels are not said again for every body: they are the bodies file's, said where
+    it was read."""
     import xarray as xr
 
     from .. import run
@@ -236,7 +240,9 @@ def _run_study(path):
     if ran:
         parts = store.PartStore(store.parts_dir(study.output)).manifest_stamp()
         stale = study.output.exists() or parts not in (None, stamp)
-        status = run.main([str(path), "--quiet", *(["--force"] if stale else [])])
+        with warnings.catch_warnings():  # the levels were checked in the bodies file
+            warnings.filterwarnings("ignore", r"grid\.pga\b", InputWarning)
+            status = run.main([str(path), "--quiet", *(["--force"] if stale else [])])
         if status == 130:
             raise KeyboardInterrupt
         if status != 0:
