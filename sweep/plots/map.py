@@ -35,6 +35,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import LogLocator, MaxNLocator, NullFormatter, ScalarFormatter
 
+from ..cf import SLID_THRESHOLD
 from ..io import units
 from ..runner.verdict import length_text
 from .style import (OUTCOME_COLOURS, POINTS_PER_INCH, RELATIVE_LABELS, axis_label, cell_edges,
@@ -191,9 +192,10 @@ def _mark_slid(ax, slid, x, y, xs, ys):
     return bool(hit.any())
 
 
-def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
+def draw_outcome_map(ax, da, x, y, legend=True, slid=None, slid_elsewhere=False):
     """Draw one 2-D outcome slice ``da`` (dims x and y) on ``ax``; cells of ``slid`` == 1
-    (the same slice of the dataset's ``slid``) get a cross."""
+    (the same slice of the dataset's ``slid``) get a cross, which the legend explains when
+    this slice or, with ``slid_elsewhere``, another panel of the figure has one."""
     da = da.transpose(y, x)
     (xs, x_edges, x_scale), (ys, y_edges, y_scale) = cells_along(da[x]), cells_along(da[y])
     cmap, norm = outcome_colours()
@@ -214,9 +216,9 @@ def draw_outcome_map(ax, da, x, y, legend=True, slid=None):
         present = set(np.unique(da.values).tolist())
         handles = [Patch(color=OUTCOME_COLOURS[int(v)], label=m.replace("_", " "))
                    for v, m in zip(values, meanings) if int(v) in present or int(v) >= 0]
-        if any_slid:
+        if any_slid or slid_elsewhere:
             handles.append(Line2D([], [], marker="x", color="k", ls="", markersize=5,
-                                  label="slid"))
+                                  label=f"slid (base > {length_text(SLID_THRESHOLD)})"))
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   fontsize=8, frameon=False)
 
@@ -250,11 +252,14 @@ def figure_map(ds, x=None, y=None):
                      for name in category_labels(ds[y].values)) / POINTS_PER_INCH
     fig, axes = plt.subplots(rows, cols, figsize=(width * cols + 1.4, height * rows),
                              squeeze=False, layout="constrained")
+    slid = [ds["slid"].isel(dict(zip(others, combo))) if "slid" in ds else None
+            for combo in combos]
+    slid_shown = any(s is not None and bool((s == 1).any()) for s in slid)
     for k, combo in enumerate(combos):
         ax = axes.flat[k]
         sel = dict(zip(others, combo))
         draw_outcome_map(ax, outcome.isel(sel), x, y, legend=(k == cols - 1 or n == 1),
-                         slid=ds["slid"].isel(sel) if "slid" in ds else None)
+                         slid=slid[k], slid_elsewhere=slid_shown)
         ax.set_title(panel_title(ds, sel, x, y), fontsize=10)
     for ax in axes.flat[n:]:
         ax.set_visible(False)

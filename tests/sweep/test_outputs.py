@@ -9,6 +9,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pytest
+from matplotlib.collections import PathCollection
 from study_helpers import cli, make_study
 
 import sweep
@@ -141,6 +142,25 @@ def test_map_panels_are_titled_with_the_body():
     fig = figure_map(sweep.run_study(study))
     assert [ax.get_title() for ax in fig.axes if ax.get_visible()] == [
         "B 10 cm × H 30 cm (b/h 0.333); mu = 0.8", "B 10 cm × H 50 cm (b/h 0.2); mu = 0.8"]
+
+
+def test_a_cross_in_any_panel_is_in_the_legend():
+    """The legend sits beside the last panel; a cell that slid in the first panel only is
+    still explained there."""
+    study = make_study({"amplitude": {"values": [0.5, 2.5], "unit": "west"},
+                        "frequency": [1.5, 8.0], "b_over_h": [0.333, 0.2]})
+    study["scene"]["solver"]["t_end"] = 1.0
+    ds = sweep.run_study(study).transpose("b_over_h", ...)
+    assert not (ds["slid"] == 1).any()
+    ds["slid"][0, 0, 0] = 1  # one cell of the first panel
+    fig = figure_map(ds)
+    first, last = [ax for ax in fig.axes if ax.get_visible()]
+    assert first.get_legend() is None
+    labels = [t.get_text() for t in last.get_legend().get_texts()]
+    assert labels[-1] == "slid (base > 1 cm)"
+    crosses = [[len(c.get_offsets()) for c in ax.collections if isinstance(c, PathCollection)]
+               for ax in (first, last)]
+    assert crosses == [[1], [0]]  # one cross, in the first panel
 
 
 # free rocking from theta_0: overturns iff theta_0 > alpha (as in test_refine.py)
