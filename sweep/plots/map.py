@@ -5,8 +5,8 @@ Reads only the Dataset of ``sweep.run`` (``outcome`` with its ``flag_values`` an
 ``flag_meanings``, coordinates with ``units``, ``long_name`` and ``study_axis``).  By default
 frequency runs along x (log scale when the values are log-spaced) and amplitude along y; an
 amplitude in West's units gets the line amplitude = 1, West's criterion for the start of
-rocking (Eq. 1).  Cells whose body slid (``slid``) carry a cross, so that a squat body that
-slid far is not read as "no rocking" alone.  A panel whose axes leave the body fixed is
+rocking (Eq. 1).  Cells whose body slid (``slid``: its base moved more than 1 cm along the
+floor) carry a cross, so that a squat body that slid far is not read as "no rocking" alone.  A panel whose axes leave the body fixed is
 titled with the body ("B 10 cm × H 30 cm (b/h 0.333)", from the study's base scene and the
 panel's values of ``B``, ``H``, ``b_over_h`` and ``size``), the other axes' values follow
 with their units.
@@ -18,7 +18,8 @@ one row per record from the top, and the numeric axis beside it (``pga``, ``scal
 the record x PGA map reads as one strip of outcomes per record against the intensity, with
 the names written level whatever their length (``--x record`` gives one column per record,
 names slanted).  An axis of integers (``seed``) has integer ticks, and an axis of a few values
-a tick on each.  Titles take at most two lines and axis labels are wrapped to their axes
+a tick on each.  Levels are drawn in the unit the study wrote them in (``study_unit``: a
+``pga`` axis written in g is drawn in g, though stored in m/s^2).  Titles take at most two lines and axis labels are wrapped to their axes
 (``style.fit_texts``).
 
 A refine study's dataset (``cf.REFINE_VARIABLES``) is drawn by :func:`figure_boundary`: the
@@ -56,6 +57,28 @@ def _value_text(coord, value):
     if unit not in RELATIVE_LABELS:  # the coordinate is in its units (SI, or degree)
         unit = coord.attrs.get("units", "")
     return f"{coord.name} = {value:.4g}" + ("" if unit in ("", "1") else f" {unit}")
+
+
+def in_study_units(ds):
+    """``ds`` with every numeric dimension coordinate in the fixed unit its study was written
+    in (a ``pga`` axis of 0.1 g steps is drawn as 0.1, 0.2 ... g, not 0.9807, 1.961 ... m s-2);
+    coordinates in SI, degrees or body-relative units as stored are kept."""
+    shown = {}
+    for name in ds.dims:
+        coord = ds.coords.get(name)
+        unit = None if coord is None else coord.attrs.get("study_unit")
+        if (unit is None or unit in RELATIVE_LABELS or coord.dtype.kind != "f"
+                or coord.attrs.get("units") == "degree"):
+            continue
+        for dimension in units.DIMENSIONS:
+            try:
+                factor = units.fixed_factor(unit, dimension)
+            except ValueError:
+                continue
+            if factor != 1.0:
+                shown[name] = (coord / factor).assign_attrs({**coord.attrs, "units": unit})
+            break
+    return ds.assign_coords(shown)
 
 
 def _base_body(ds):
@@ -236,6 +259,7 @@ def figure_map(ds, x=None, y=None):
     """
     if "boundary" in ds:
         return figure_boundary(ds, x, y)
+    ds = in_study_units(ds)
     x, y = _axes_of(ds, x, y)
     outcome = ds["outcome"]
     others = [d for d in outcome.dims if d not in (x, y)]

@@ -123,3 +123,20 @@ def test_any_axis_of_strings_is_categorical():
         landing = names[round(0.5 * (y0 + y1), 9)]
         outcome = int(ds["outcome"].sel(landing=landing, amplitude=0.5 * (x0 + x1)))
         np.testing.assert_allclose(rgba, to_rgba(OUTCOME_COLOURS[outcome]), atol=1e-6)
+
+
+def test_levels_are_drawn_in_the_unit_the_study_was_written_in(records_by_pga):
+    """A pga axis written in g (stored in m/s^2) is drawn in g: cells centred at the levels
+    as written, the axis labelled [g]; an axis written in m/s^2 stays as stored."""
+    ds = records_by_pga.isel(pga=[0, 1]).sel(H=0.8)
+    written = np.array([0.25, 0.5])  # g
+    in_g = ds.assign_coords(pga=("pga", written * 9.80665, {**ds["pga"].attrs,
+                                                            "study_unit": "g"}))
+    ax = [a for a in figure_map(in_g).axes if a.get_visible()][0]
+    assert ax.get_xlabel().endswith("[g]")
+    edges = ax.collections[0].get_coordinates()[0, :, 0]
+    centres = (np.sqrt(edges[:-1] * edges[1:]) if ax.get_xscale() == "log"
+               else (edges[:-1] + edges[1:]) / 2)
+    np.testing.assert_allclose(centres, written, rtol=1e-12)
+    ax = [a for a in figure_map(ds).axes if a.get_visible()][0]
+    assert ax.get_xlabel().endswith("[m s-2]")
