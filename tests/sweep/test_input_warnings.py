@@ -256,11 +256,16 @@ def _pga_study(values):
     (["0.1 g", "3 m/s^2"], []),
 ])
 def test_study_pga_axis_warned_of_once(values, said):
+    assert _warned(load_study, _pga_study(values)) == said
+
+
+def _warned(load, raw):
+    """(path, message) of every InputWarning that loading ``raw`` gives."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        load_study(_pga_study(values))
-    assert [(w.message.problem.path, w.message.problem.message) for w in caught
-            if w.category is InputWarning] == said
+        load(raw)
+    return [(w.message.problem.path, w.message.problem.message) for w in caught
+            if w.category is InputWarning]
 
 
 def _survey(levels):
@@ -282,11 +287,7 @@ def _survey(levels):
 ])
 def test_bodies_file_levels_warned_of_once(levels, said):
     from sweep.io.bodies_schema import load_survey
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        load_survey(_survey(levels))
-    assert [(w.message.problem.path, w.message.problem.message) for w in caught
-            if w.category is InputWarning] == said
+    assert _warned(load_survey, _survey(levels)) == said
 
 
 def test_scene_command_says_a_bare_pga_reads_like_g(tmp_path):
