@@ -1,12 +1,16 @@
-"""Integer codes shared by the kernel and its users.
+"""Integer codes shared by the kernel and its users, and standard gravity.
 
 Modes (the paper's six motion types), end statuses, ground-motion kinds, the layout of the
 flat float64 parameter row that describes one scene to the compiled code and the same row
 as a named record (``SCENE_DTYPE``), the indices of the state vector, and the columns of
 the impact log and the history.  The name tuples feed
-error messages and the CF ``flag_meanings`` of the output datasets.
+error messages and the CF ``flag_meanings`` of the output datasets.  ``G`` is defined here,
+once for the kernel (``ground``) and ``sweep`` (``sweep.bodies``): this module imports numpy
+alone, so ``sweep``'s input checks read it without loading numba.
 """
 import numpy as np
+
+G = 9.80665  # standard gravity [m/s^2]
 
 # --- modes (Ishiyama's Fig. 1) -------------------------------------------------------------
 REST, SLIDE, ROTATION, SLIDE_ROTATION, TRANSLATION_JUMP, ROTATION_JUMP = range(6)

@@ -14,11 +14,10 @@ pulse) so that the integrator never steps across a kink or a jump.
 import math
 
 from ._jit import jit
-from .codes import (G_NONE, G_PULSE_RECT, G_PULSE_TRI, G_RECORD, G_SINE, G_SWEEP,
+from .codes import (G, G_NONE, G_PULSE_RECT, G_PULSE_TRI, G_RECORD, G_SINE, G_SWEEP,
                     HOLD_ACCELERATION, HOLD_VELOCITY, LAW_LOG)
 
 TWO_PI = 2.0 * math.pi
-G = 9.80665  # standard gravity [m/s^2]
 SCAN_FRACTION = 0.125   # of a period: an interval this long holds at most one extremum
 
 @jit(inline="always")

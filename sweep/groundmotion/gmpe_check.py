@@ -21,8 +21,9 @@ from collections import namedtuple
 
 import numpy as np
 
+from ..bodies import G
 from . import stochastic
-from .intensity import G, measures
+from .intensity import measures
 
 MAGNITUDES = (5.5, 6.0, 6.5, 7.0, 7.5)
 DISTANCES = (10.0e3, 20.0e3, 30.0e3, 50.0e3)  # Rrup [m]

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-G = 9.80665  # standard gravity [m/s^2]
+from ..bodies import G
 HIGHPASS_HZ = 0.1  # corner of the baseline high-pass [Hz]
 HIGHPASS_ORDER = 4
 # Zeros padded on each side: half of Converse & Brady's (1992) 1.5 * order / corner.

@@ -14,7 +14,7 @@ accelerations (a study's axis, the levels of a bodies file) is doubted as a whol
 import math
 from pathlib import Path
 
-from ..paper.criteria import G
+from ..bodies import G
 from . import units
 from .files import named
 from .problems import Problem

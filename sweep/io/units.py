@@ -14,7 +14,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from ..paper import criteria
+from .. import bodies
 
 DIMENSIONS = ("acceleration", "velocity", "length", "angle", "angular_velocity", "frequency",
               "time", "dimensionless")
@@ -29,7 +29,7 @@ MILE = 1609.344
 _FIXED = {
     "m/s^2": ("acceleration", 1.0), "cm/s^2": ("acceleration", 0.01),
     "mm/s^2": ("acceleration", 0.001), "gal": ("acceleration", 0.01),
-    "g": ("acceleration", criteria.G), "mg": ("acceleration", criteria.G / 1000.0),
+    "g": ("acceleration", bodies.G), "mg": ("acceleration", bodies.G / 1000.0),
     "m/s": ("velocity", 1.0), "cm/s": ("velocity", 0.01), "mm/s": ("velocity", 0.001),
     "kine": ("velocity", 0.01),
     "m": ("length", 1.0), "cm": ("length", 0.01), "mm": ("length", 0.001),
@@ -124,11 +124,11 @@ class Quantity:
             raise ValueError(f"'{self}' is relative to the body and needs its B and H")
         B, H, i_g = body["B"], body["H"], body.get("i_g")
         if self.unit == "west":
-            factor = criteria.west_acceleration(B, H)
+            factor = bodies.west_acceleration(B, H)
         elif self.unit == "v_h":
-            factor = criteria.single_shock_velocity(B, H, i_g)
+            factor = bodies.single_shock_velocity(B, H, i_g)
         else:
-            factor = criteria.body_constants(B, H, i_g).alpha
+            factor = bodies.body_constants(B, H, i_g).alpha
         return self.value * float(factor)
 
 

@@ -4,64 +4,24 @@ Every function takes the full breadth ``B`` and height ``H`` [m] of a rectangula
 h = H/2) and, where the paper uses it, the radius of gyration ``i_g`` about G [m]; ``i_g=None``
 means a uniform rectangle (i^2 = r^2/3).  Energies are per unit mass.  Inputs may be numpy arrays.
 Equation numbers are the paper's (``paper/ishiyama-overturning.md``); symbols as PHYSICS.md 1.1.
+``G``, :func:`body_constants`, West's acceleration (Eq. 1, :func:`west_acceleration`) and the
+single-shock velocity v_H (Eqs. 9/10, :func:`single_shock_velocity`) are the body's scales that
+the units of scene files need too: they are defined in ``sweep.bodies``, below ``io``, and
+imported here under the same names.
 """
 from collections import namedtuple
 
 import numpy as np
 
-G = 9.80665  # standard gravity [m/s^2], the value kernels.ground uses
+from ..bodies import G, BodyConstants, body_constants, single_shock_velocity, west_acceleration
+
 V_FACTOR = 0.4  # Ishiyama's empirical lower limit of the normalized velocity (point P)
 POINT_P = (V_FACTOR, 1.0)  # (v/v_H, a/((B/H) g)) of the paper's point P
-
-BodyConstants = namedtuple("BodyConstants", "b h r alpha i2 p eta")
-BodyConstants.__doc__ = """Derived constants of a rectangular body (PHYSICS.md 1.1, 2.1).
-
-b, h : half-breadth, half-height [m]; r : corner-centroid distance [m]; alpha : slenderness
-angle atan(b/h) [rad]; i2 : i^2 [m^2]; p : frequency parameter sqrt(g r/(i^2 + r^2)) [1/s];
-eta : Housner's angular-velocity ratio per impact 1 - 2b^2/(i^2 + r^2) [-]."""
 
 IshiyamaLimits = namedtuple("IshiyamaLimits", "a_o v_o d_o T_c")
 IshiyamaLimits.__doc__ = """Lower limits a_o [m/s^2], v_o [m/s], d_o [m] and the period T_c [s]."""
 
-
-def _i2(B, H, i_g):
-    """Squared radius of gyration about G; uniform rectangle when ``i_g`` is None."""
-    if i_g is None:
-        return (np.square(B) + np.square(H)) / 12.0  # r^2/3 with r^2 = (B^2 + H^2)/4
-    return np.square(i_g)
-
-
-def body_constants(B, H, i_g=None, g=G):
-    """Constants b, h, r, alpha, i^2, p and Housner's eta of a rectangular body.
-
-    Parameters
-    ----------
-    B, H : float or ndarray
-        Full breadth and height [m].
-    i_g : float or ndarray, optional
-        Radius of gyration about G [m]; default uniform rectangle, i^2 = r^2/3.
-    g : float
-        Gravity [m/s^2].
-
-    Returns
-    -------
-    BodyConstants
-
-    References
-    ----------
-    PHYSICS.md 1.1 (notation) and 2.1 (eta).
-    """
-    b, h = 0.5 * np.asarray(B, float), 0.5 * np.asarray(H, float)
-    r2 = b * b + h * h
-    i2 = _i2(B, H, i_g)
-    return BodyConstants(b=b, h=h, r=np.sqrt(r2), alpha=np.arctan2(b, h), i2=i2,
-                         p=np.sqrt(g * np.sqrt(r2) / (i2 + r2)),
-                         eta=1.0 - 2.0 * b * b / (i2 + r2))
-
-
-def west_acceleration(B, H, g=G):
-    """West's acceleration to initiate rocking, a = (b/h) g, Eq. (1) [m/s^2]."""
-    return np.asarray(B, float) / np.asarray(H, float) * g
+# Eq. (1), West's acceleration (b/h) g: west_acceleration, from sweep.bodies.
 
 
 def mononobe_coefficients(k_x, k_y):
@@ -133,15 +93,7 @@ def shock_angular_velocity(B, H, v, i_g=None):
     return np.asarray(v, float) * c.h / (c.i2 + c.r ** 2)
 
 
-def single_shock_velocity(B, H, i_g=None, g=G):
-    """Velocity v_H of a single horizontal shock that overturns the body, Eqs. (9)/(10) [m/s].
-
-    v_H^2 = (2g/r)(i^2 + r^2)(1 - cos alpha)/cos^2 alpha; with ``i_g=None`` (i^2 + r^2 = 4r^2/3)
-    this is Eq. (10).  It is the unit of the normalized velocity (the ``v_H`` unit of scene files).
-    """
-    c = body_constants(B, H, i_g, g)
-    cos_a = np.cos(c.alpha)
-    return np.sqrt(2.0 * g / c.r * (c.i2 + c.r ** 2) * (1.0 - cos_a) / cos_a ** 2)
+# Eqs. (9)/(10), the single-shock velocity v_H: single_shock_velocity, from sweep.bodies.
 
 
 def single_shock_velocity_small_angle(B, H, g=G):

@@ -20,7 +20,7 @@ from matplotlib.patches import Patch
 
 from kernels import codes
 
-from ..groundmotion.intensity import G
+from ..bodies import G
 from ..probability.fragility import describe_group, group_coords, group_indices
 from .style import fit_suptitle, fit_texts, legend_columns, plain_log_axis
 

@@ -18,10 +18,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from ..bodies import G
 from ..paper import classify, criteria
 from .style import fit_suptitle, fit_texts, place_legend, plain_log_axis
 
-G = criteria.G
 MAX_LINES = 10  # more combinations of the other axes than this: the first ones are drawn
 BAND_TOP = {"log": 2.6, "linear": 1.45}  # top of the y axis, above the overturned band at 1
 MARKER_SIZE = 3.5

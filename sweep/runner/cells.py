@@ -17,10 +17,10 @@ import numpy as np
 from kernels import api, codes
 
 from .. import cf
+from ..bodies import body_constants, single_shock_velocity, west_acceleration
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
 from ..groundmotion import applied
-from ..paper import criteria
 from . import grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
@@ -95,11 +95,11 @@ def summarize(results, bodies, motions):
                        np.where(overturned, codes.OVERTURN,
                                 np.where(theta > 0, codes.ROCKED, codes.NO_ROCKING)))
     B, H, i_g = bodies.T
-    v_H = np.array([criteria.single_shock_velocity(b, h, None if np.isnan(i) else i)
+    v_H = np.array([single_shock_velocity(b, h, None if np.isnan(i) else i)
                     for b, h, i in bodies], dtype=np.float64).reshape(-1)
-    p = np.array([criteria.body_constants(b, h, None if np.isnan(i) else i).p
+    p = np.array([body_constants(b, h, None if np.isnan(i) else i).p
                   for b, h, i in bodies], dtype=np.float64).reshape(-1)
-    west = criteria.west_acceleration(B, H)  # g tan(alpha)
+    west = west_acceleration(B, H)  # g tan(alpha)
     pga, pgv, pgd, d5_95 = motions.T
     out = {
         "outcome": outcome,
@@ -117,7 +117,7 @@ def summarize(results, bodies, motions):
         "steps": results[:, codes.R_STEPS],
         "energy_clamps": results[:, codes.R_ENERGY_CLAMPS],
         "f_at_overturn": results[:, codes.R_F_AT_OVERTURN],
-        "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / criteria.west_acceleration(B, H),
+        "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / west_acceleration(B, H),
         "v_norm_at_overturn": results[:, codes.R_V_AT_OVERTURN] / v_H,
         "slid": np.where(failed, -1, results[:, codes.R_MAX_SLIP] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,

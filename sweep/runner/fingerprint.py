@@ -12,7 +12,8 @@ can say what changed:
     record's ``name`` or ``path``;
 ``program``
     the package version and the sources that turn a cell into results (``PROGRAM_SOURCES``:
-    the kernel, the input checks, the cell runner, the dataset's variables).
+    the kernel, the body's scales, the input checks, the cell runner, the dataset's
+    variables).
 """
 import hashlib
 import importlib.resources
@@ -25,7 +26,7 @@ from . import grid
 
 _ROOT = Path(__file__).resolve().parents[2]
 # Source files whose edit can change what a cell's part holds.
-PROGRAM_SOURCES = ("kernels/*.py", "sweep/io/*.py", "sweep/io/formats/*.py",
+PROGRAM_SOURCES = ("kernels/*.py", "sweep/bodies.py", "sweep/io/*.py", "sweep/io/formats/*.py",
                    "sweep/groundmotion/*.py",
                    "sweep/runner/grid.py",
                    "sweep/runner/cells.py", "sweep/paper/criteria.py", "sweep/cf.py")

@@ -8,8 +8,8 @@ from collections import namedtuple
 
 from kernels.api import MAX_LOG, SceneResult
 
+from ..bodies import G
 from ..groundmotion import applied
-from ..groundmotion.intensity import G
 from ..io.plausibility import scene_doubts
 from ..io.problems import FileProblems, Problem, warn
 from ..io.records import floor_provenance

@@ -10,7 +10,7 @@ import re
 
 import numpy as np
 
-from ...paper import criteria
+from ... import bodies
 from ..units import fixed_factor
 from .base import (MAX_SAMPLES, Reading, RecordError, check_finite, check_units, line_error,
                    make_record, parse_lines, read_lines)
@@ -22,7 +22,7 @@ _UNITS = re.compile(r"\bUNITS?\s+OF\s+(\S+)", re.IGNORECASE)
 def read_at2(path, units=None):
     """Read a PEER NGA ``.AT2`` file (acceleration in g) into m/s^2; ``units``, if given,
     must be g."""
-    check_units(units, "g", criteria.G, path, said="a PEER .AT2 file is in")
+    check_units(units, "g", bodies.G, path, said="a PEER .AT2 file is in")
     lines = read_lines(path)
     if len(lines) <= _HEADER_LINES:
         raise RecordError(f"{path}: not a PEER .AT2 file (fewer than 5 lines)")
@@ -39,7 +39,7 @@ def read_at2(path, units=None):
     provenance = f"{path}: PEER NGA AT2, {lines[1].strip()}, NPTS = {npts}, DT = {dt:g} s, g"
     reading = Reading("at2", "PEER NGA AT2", units_from, units_line,
                       tuple(line.strip() for line in lines[:_HEADER_LINES]), lines[1].strip())
-    return make_record(path, dt, values * criteria.G, provenance, "g", reading)
+    return make_record(path, dt, values * bodies.G, provenance, "g", reading)
 
 
 def _stated_units(line, path):
@@ -53,7 +53,7 @@ def _stated_units(line, path):
         factor = fixed_factor(named, "acceleration")
     except ValueError:
         return "format", None
-    if not math.isclose(factor, criteria.G, rel_tol=1e-12):
+    if not math.isclose(factor, bodies.G, rel_tol=1e-12):
         raise line_error(path, 3, f"names the unit {named}; a PEER .AT2 file is read in g")
     return "header", f"line 3: {line.strip()}"
 

@@ -25,15 +25,15 @@ from collections import namedtuple
 
 import numpy as np
 
-from ...paper import criteria
+from ... import bodies
 from ..units import fixed_factor
 from .base import (MAX_SAMPLES, Reading, RecordError, check_counts, check_finite, check_units,
                    fixed_width, line_error, make_record, parse_lines, read_lines)
 
 EXTENSIONS = (".v2", ".v2c")
 # COSMOS table 2, the acceleration units: code -> (name, factor to m/s^2)
-COSMOS_UNITS = {2: ("g", criteria.G), 4: ("cm/s^2", 0.01), 7: ("in/s^2", 0.0254),
-                10: ("gal", 0.01), 11: ("mg", criteria.G / 1000.0)}
+COSMOS_UNITS = {2: ("g", bodies.G), 4: ("cm/s^2", 0.01), 7: ("in/s^2", 0.0254),
+                10: ("gal", 0.01), 11: ("mg", bodies.G / 1000.0)}
 _DT_MS = 62  # the real-header value that is the sample step [ms]
 _CSMIP_HEADER_LINES = 25 + 7 + 13  # text, integer-header and real-header lines of a channel
 _CSMIP_LAYOUT = (8, 10)  # values per line and field width where a CSMIP data line gives none
