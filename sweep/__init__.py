@@ -7,7 +7,7 @@ normalized plane), ``plots`` (figures from datasets) and ``cf`` (the metadata of
 dataset).  ``run``, ``scene``, ``plot`` and ``estimate`` are the ``python -m`` commands;
 :func:`simulate` and :func:`run_study` the Python entry points.
 """
-__version__ = "0.1.0"
+from ._version import __version__
 
 
 def run_study(study, **options):

@@ -20,7 +20,7 @@ import numpy as np
 
 from kernels import codes
 
-from . import __version__
+from ._version import __version__
 from .runner import grid, refine
 
 CONVENTIONS = "CF-1.11"

@@ -19,7 +19,8 @@ import numpy as np
 
 from kernels import codes
 
-from .. import __version__, cf
+from .. import cf
+from .._version import __version__
 from . import fit as fitting
 from .intervals import METHODS, proportion_interval, validate_confidence
 

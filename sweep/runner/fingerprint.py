@@ -20,7 +20,7 @@ import importlib.resources
 import json
 from pathlib import Path
 
-from .. import __version__
+from .._version import __version__
 from ..io import records
 from . import grid
 
