@@ -43,8 +43,8 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from ..io.records import Record
 from . import crustal
+from .record import Record
 
 MODELS = ("boore2003",)
 """Names accepted by :func:`generate`."""

@@ -5,15 +5,16 @@ it cannot take raises :class:`RecordError` with a message that starts with the f
 where one line is at fault, names it (``line 23: expected 8 integers, got 'abc'``).  A unit the
 user gives (``units:``) that is not the one the file states is refused (:func:`check_units`).
 Each reader says how it read the file (:class:`Reading`: the format, where the unit came from,
-the header lines it found), which the scene's outputs show.
+the header lines it found), which the scene's outputs show.  :class:`Record` itself is a motion as
+numbers, defined in ``sweep.groundmotion.record`` and imported here for the readers.
 """
-import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ...groundmotion.record import Record
 from ..units import fixed_factor
 
 # Most samples a record may have once on its uniform grid: 80 MB of float64, 28 hours at
@@ -67,50 +68,6 @@ class Reading:
     header: tuple = ()
     title: str = ""
     notes: tuple = ()
-
-
-@dataclass(frozen=True, eq=False)
-class Record:
-    """A uniformly sampled acceleration record.
-
-    Attributes
-    ----------
-    name : str
-        Bundled name, or the file's path.
-    dt : float
-        Sample step [s].
-    samples : ndarray, shape (n,)
-        Acceleration [m/s^2], read-only.
-    provenance : str
-        Where the data come from and what was done to them.
-    units : str
-        Acceleration unit the file's numbers were read in (m/s^2 for the bundled records).
-    reading : Reading or None
-        How the file was read; None for a record that no file gave (a synthetic motion).
-    """
-
-    name: str
-    dt: float
-    samples: np.ndarray
-    provenance: str
-    units: str = "m/s^2"
-    reading: Reading = None
-
-    @property
-    def pga(self):
-        """Peak absolute acceleration [m/s^2]."""
-        return float(np.max(np.abs(self.samples)))
-
-    @functools.cached_property
-    def intensity(self):
-        """:class:`~sweep.groundmotion.intensity.Intensity` of the samples (scale 1)."""
-        from ...groundmotion.intensity import measures
-        return measures(self.samples, self.dt)
-
-    @property
-    def duration(self):
-        """Time from the first to the last sample [s]."""
-        return self.dt * (len(self.samples) - 1)
 
 
 def line_error(path, number, message):
