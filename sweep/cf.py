@@ -21,7 +21,7 @@ import numpy as np
 from kernels import codes
 
 from ._version import __version__
-from .runner import grid, refine
+from .io import study_grid, vocabulary
 
 CONVENTIONS = "CF-1.11"
 PACKAGE = "rigid-block-sweeps"
@@ -115,7 +115,9 @@ MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 # refined axis's units; ``{axis}`` in a long name: the refined axis's long name; dims
 # ``(REFINED,)``: along the refined axis's coarse values too.
 REFINED = "refined"
-BRACKET_FLAGS = (tuple(range(len(refine.BRACKET_NAMES))), refine.BRACKET_NAMES)
+# How a line's boundary was bracketed, by code (``sweep.runner.refine``: BRACKETED = 0, ...).
+BRACKET_NAMES = ("bracketed", "never_overturned", "overturned_at_start", "simulation_failed")
+BRACKET_FLAGS = (tuple(range(len(BRACKET_NAMES))), BRACKET_NAMES)
 REFINE_VARIABLES = {
     "boundary": Variable("float64", None, "{axis}: overturning boundary",
                          comment="middle of [boundary_lower, boundary_upper]: the lowest value "
@@ -232,7 +234,7 @@ def describe_excitation(ground, varied=()):
 def _horizontal_axes(study):
     return tuple(axis.name for axis in study.axes
                  if any(path.startswith("excitation.horizontal.")
-                        for path in grid.targets(axis.name)))
+                        for path in vocabulary.targets(axis.name)))
 
 
 def global_attrs(study, history=None):
@@ -289,8 +291,8 @@ def dataset_names(study):
 
     A dotted scene path is named by its last key (``excitation.horizontal.magnitude`` ->
     ``magnitude``) when no other axis or group takes that name and it is not the name of an
-    axis of ``grid.AXES`` (``excitation.vertical.scale`` is not the ``scale`` axis), else by
-    the path with ``_`` for ``.`` (``excitation_vertical_scale``).  A name that is an
+    axis of ``io.vocabulary.AXES`` (``excitation.vertical.scale`` is not the ``scale``
+    axis), else by the path with ``_`` for ``.`` (``excitation_vertical_scale``).  A name that is an
     attribute of ``xarray.Dataset`` or ``xarray.DataArray`` gets ``_factor`` (``size``) or
     ``_axis`` appended, so that ``ds.outcome.size_factor`` is the coordinate, not the element
     count.  Each coordinate keeps the study's name as its ``study_axis`` attribute.
@@ -304,7 +306,7 @@ def dataset_names(study):
     out = {}
     for name in names:
         label = short[name]
-        if label != name and (taken.count(label) > 1 or label in grid.AXES):
+        if label != name and (taken.count(label) > 1 or label in vocabulary.AXES):
             label = name.replace(".", "_")
         if (hasattr(xr.Dataset, label) or hasattr(xr.DataArray, label)
                 or label in VARIABLES and label != name):
@@ -333,7 +335,7 @@ def _coords(study):
 
 def refine_attrs(study, rounds, simulations):
     """Global attributes of a refine study: its settings and what it cost."""
-    _, axis = refine.refined_axis(study)
+    _, axis = study_grid.refined_axis(study)
     return {
         "refine_axis": axis.name,
         "refine_dimension": dataset_names(study)[axis.name],
@@ -344,8 +346,8 @@ def refine_attrs(study, rounds, simulations):
                            "and the one below it, to a bracket no wider than the tolerance",
         "refine_rounds": int(rounds),
         "refine_simulations": int(simulations),
-        "refine_max_simulations": refine.max_simulations(study),
-        "refine_dense_grid_simulations": refine.dense_simulations(study),
+        "refine_max_simulations": study_grid.max_simulations(study),
+        "refine_dense_grid_simulations": study_grid.dense_simulations(study),
     }
 
 
@@ -371,9 +373,9 @@ def refine_dataset(study, arrays, *, rounds, history=None):
     """
     import xarray as xr
 
-    k, axis = refine.refined_axis(study)
+    k, axis = study_grid.refined_axis(study)
     dims, _ = _dims(study)
-    line_dims, shape = dims[:k] + dims[k + 1:], refine.line_shape(study)
+    line_dims, shape = dims[:k] + dims[k + 1:], study_grid.line_shape(study)
     data = {}
     for name, var in REFINE_VARIABLES.items():
         a = np.asarray(arrays[name], dtype=var.dtype)

@@ -20,11 +20,10 @@ from pathlib import Path
 
 from kernels.api import DEFAULTS
 
-from ..runner import grid
 from . import bodies_schema as bodies
 from . import scene_schema as scene
 from . import study_schema as study
-from . import units
+from . import units, vocabulary
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 MARKDOWN = "schema.md"
@@ -225,9 +224,9 @@ def _table(section, sections):
 
 
 def _axes_table():
-    """The named axes of a study's grid (``runner.grid.AXES``)."""
+    """The named axes of a study's grid (``io.vocabulary.AXES``)."""
     lines = ["| axis | sets | units | what |", "|---|---|---|---|"]
-    for name, (paths, dimension, long_name) in grid.AXES.items():
+    for name, (paths, dimension, long_name) in vocabulary.AXES.items():
         unit = _unit_text((dimension,)) if dimension in units.DIMENSIONS else (
             "names" if dimension == "name" else "those of the scene's field")
         lines.append(f"| `{name}` | {', '.join(f'`{p}`' for p in paths)} | {_cell(unit)} | "
@@ -322,7 +321,7 @@ def scene_json_schema():
 
 def study_json_schema():
     """The JSON Schema of study files: its scene refers to the scene files' schema, its grid
-    names the axes of ``runner.grid.AXES`` (any dotted scene path is an axis too)."""
+    names the axes of ``io.vocabulary.AXES`` (any dotted scene path is an axis too)."""
     schema = _described_units(_bounded(study.StudyFile.model_json_schema()))
     schema["$defs"]["RangeSpec"] = _described_units(_bounded(
         study.RangeSpec.model_json_schema()))
@@ -336,7 +335,7 @@ def study_json_schema():
                            "description": properties["scene"]["description"]}
     properties["grid"].update(additionalProperties=axis, minProperties=1, properties={
         name: {**(record if name == "record" else axis), "description": long_name}
-        for name, (_, _, long_name) in grid.AXES.items()})
+        for name, (_, _, long_name) in vocabulary.AXES.items()})
     return _finished(_nullable_sections(schema), "Study file (python -m sweep.run)")
 
 

@@ -26,8 +26,7 @@ import yaml
 from pydantic import (AfterValidator, BeforeValidator, Field, ValidationError, WithJsonSchema,
                       model_validator)
 
-from ..runner import grid
-from . import units
+from . import study_grid, units, vocabulary
 from .files import find_files, named
 from .plausibility import ReadsAsG, glob_notes, levels_read_in_si, scene_doubts
 from .scene_schema import (Body, Contact, Initial, NoMotion, PulseMotion, RecordMotion,
@@ -166,11 +165,11 @@ class Study:
 
     @property
     def shape(self):
-        return grid.shape(self)
+        return study_grid.shape(self)
 
     @property
     def n_cells(self):
-        return grid.n_cells(self)
+        return study_grid.n_cells(self)
 
     @property
     def excitation(self):
@@ -351,7 +350,7 @@ def _spec_values(spec, path, problems):
 
 
 def _long_name(name, dimension, relative_unit):
-    text = grid.AXES[name][2] if name in grid.AXES else name
+    text = vocabulary.AXES[name][2] if name in vocabulary.AXES else name
     if dimension in ("velocity", "length") and "amplitude" in name:
         text = f"{text} ({'velocity' if dimension == 'velocity' else 'displacement'})"
     if relative_unit:
@@ -378,7 +377,7 @@ def _axis(name, spec, path, scene, problems):
             problems.append(Problem(f"{path}[{i}]", v, "must be a number or a string"))
     if len(problems) > before:
         return None
-    allowed = grid.value_dimensions(name, scene)
+    allowed = vocabulary.value_dimensions(name, scene)
     if allowed == ("name",) or (allowed is None and all(isinstance(v, str) for v in values)
                                 and not any(_quantity_or_none(v) for v in values)):
         if unit:
@@ -396,7 +395,7 @@ def _axis(name, spec, path, scene, problems):
         result = _integer_axis(result, path, problems)
         if result is None:
             return None
-    if name in grid.COMPUTED and not np.all(result.coords > 0):
+    if name in vocabulary.COMPUTED and not np.all(result.coords > 0):
         problems.append(Problem(path, spec, "values must be positive numbers"))
     unique, counts = np.unique(result.coords, return_counts=True)
     if np.any(counts > 1):  # a coordinate must pick one cell
@@ -475,7 +474,7 @@ def _numeric_axis(name, values, unit, allowed, path, problems):
         problems.append(Problem(path, values,
                                 "mixes units of different kinds; give every value in one unit"))
         return None
-    if name in grid.COMPUTED and any(q.unit for q in quantities):
+    if name in vocabulary.COMPUTED and any(q.unit for q in quantities):
         problems.append(Problem(path, values, "takes plain numbers (a ratio), not units"))
         return None
     found = dims.pop()
@@ -503,7 +502,7 @@ def _meant_axis(name):
     section (``theta`` -> ``initial.theta``, ``magnitude`` ->
     ``excitation.horizontal.magnitude``), else the closest name or synonym (``hieght``)."""
     text = str(name)
-    same = [axis for axis in grid.AXES if axis.lower() == text.lower()]
+    same = [axis for axis in vocabulary.AXES if axis.lower() == text.lower()]
     if len(same) == 1:
         return same[0]
     if text.lower() in SYNONYMS:
@@ -513,19 +512,19 @@ def _meant_axis(name):
             return f"{section}.{text}"
     if any(text in model.model_fields for model in MOTIONS.values()) and text != "kind":
         return f"excitation.horizontal.{text}"
-    close = closest(text, [*grid.AXES, *SYNONYMS])
+    close = closest(text, [*vocabulary.AXES, *SYNONYMS])
     return SYNONYMS.get(close, close)
 
 
 def _axis_name_ok(name, path, problems):
-    if name in grid.AXES:
+    if name in vocabulary.AXES:
         return True
-    if isinstance(name, str) and "." in name and name.split(".")[0] in grid.SCENE_SECTIONS:
+    if isinstance(name, str) and "." in name and name.split(".")[0] in vocabulary.SCENE_SECTIONS:
         return True
     close = _meant_axis(name)
     hint = f"did you mean '{close}'? " if close else ""
     problems.append(Problem(path, name, f"unknown axis; {hint}axes are "
-                                        f"{', '.join(grid.AXES)} or a dotted scene path "
+                                        f"{', '.join(vocabulary.AXES)} or a dotted scene path "
                                         "such as excitation.horizontal.f_stop"))
     return False
 
@@ -557,7 +556,7 @@ def _fits_scene(name, path, scene, problems):
     sine, a record axis on a sine.  A motion of unknown or missing kind is left to the scene
     check."""
     excitation = scene.get("excitation")
-    for target in grid.targets(name):
+    for target in vocabulary.targets(name):
         section, component, field = (target.split(".") + ["", ""])[:3]
         if section != "excitation" or component not in ("horizontal", "vertical") or \
                 not field or target.count(".") != 2 or not isinstance(excitation, dict):
@@ -581,7 +580,7 @@ def _conflicts(axes, problems):
     """Two axes setting the same scene field."""
     owner = {}
     for name in axes:
-        paths = () if name == "mu" else grid.targets(name)
+        paths = () if name == "mu" else vocabulary.targets(name)
         if name == "size":
             continue  # scales whatever B and H are
         for p in paths:
@@ -718,13 +717,13 @@ def _refine(raw, axes, groups, names, problems):
 def _blame(study, path):
     """The axis whose scene paths hold ``path``, or None."""
     for axis in study.axes:
-        for target in grid.targets(axis.name):
+        for target in vocabulary.targets(axis.name):
             if path == target or path.startswith(target + ".") or target.startswith(path + "."):
                 return axis
     return None
 
 
-def _checked_cells(study, seed=grid.DEFAULT_SEED):
+def _checked_cells(study, seed=study_grid.DEFAULT_SEED):
     """The cells whose scenes :func:`cell_problems` checks, a bounded number.
 
     Every cell of a grid of up to ``CHECK_ALL_CELLS``.  Of a larger grid: every value of each
@@ -742,7 +741,7 @@ def _checked_cells(study, seed=grid.DEFAULT_SEED):
         picks = np.arange(size) if size <= CHECKED_PER_DIM else np.union1d(
             [0, size - 1], rng.choice(size, CHECKED_PER_DIM - 2, replace=False))
         cells += [int(p) * stride for p in picks]
-    cells += grid.sample(n, SAMPLED_CELLS, seed).tolist()
+    cells += study_grid.sample(n, SAMPLED_CELLS, seed).tolist()
     return list(dict.fromkeys(cells))
 
 
@@ -753,7 +752,7 @@ def _located(study, index, problem):
     if axis is None:
         return Problem(f"scene.{problem.path}", problem.value, problem.message)
     dim_names = [d.name for d in study.dims]
-    i = grid.positions(study, index)[dim_names.index(_dim_of(study, axis).name)]
+    i = study_grid.positions(study, index)[dim_names.index(_dim_of(study, axis).name)]
     return Problem(f"grid.{axis.name}[{i}]", axis.values[i], problem.message)
 
 
@@ -782,7 +781,7 @@ def cell_problems(study, limit=50, doubts=None):
     doubted = {}  # path without the value's index -> (its first doubt, paths of its values)
     for index in _checked_cells(study):
         try:
-            scene = load_scene(grid.cell_scene(study, index), base_dir=study.base_dir)
+            scene = load_scene(study_grid.cell_scene(study, index), base_dir=study.base_dir)
             resolved = resolve_scene(scene)
         except FileProblems as err:
             for problem in (_located(study, index, p) for p in err.problems):
@@ -795,7 +794,7 @@ def cell_problems(study, limit=50, doubts=None):
             continue
         for doubt in scene_doubts(scene, resolved) if doubts is not None else ():
             axis = _blame(study, doubt.path)
-            if axis is not None and axis.name in grid.COMPUTED:
+            if axis is not None and axis.name in vocabulary.COMPUTED:
                 continue  # a value computed in metres, not a bare number written
             if isinstance(doubt, ReadsAsG) and axis is not None and \
                     levels_read_in_si(axis.values):
@@ -834,11 +833,11 @@ def _size_problems(study, max_cells):
     int64 cell ids can number."""
     n = study.n_cells
     if max_cells and n > max_cells:
-        return [Problem("grid", grid.shape_text(study),
+        return [Problem("grid", study_grid.shape_text(study),
                         f"{n} cells, more than the limit of {max_cells}; run with "
                         "--max-cells N to allow N cells (0: no limit)")]
     if n > MAX_CELL_IDS:
-        return [Problem("grid", grid.shape_text(study),
+        return [Problem("grid", study_grid.shape_text(study),
                         f"{n} cells, more than int64 cell ids can number")]
     return []
 

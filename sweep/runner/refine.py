@@ -13,22 +13,26 @@ overturn again (``coarse_transitions`` > 1) the bracket is the lowest one the co
 show; a band of overturning between two standing coarse values is not seen.  A line whose
 scan meets a failed simulation before any overturning, or whose midpoint fails, stops there
 (``simulation_failed``) and keeps its bracket so far.
+
+The lines and what a refine study may cost (``refined_axis``, ``line_shape``, ``wide``,
+``max_simulations``, ...) are counted in ``sweep.io.study_grid``, the names of the bracket
+codes (``BRACKET_NAMES``) are the dataset's (``sweep.cf``); both are imported here under the
+same names.
 """
 import dataclasses
-import math
 from collections import namedtuple
 
 import numpy as np
 
+from ..cf import BRACKET_NAMES
 from ..io import units
+from ..io.study_grid import (SLACK, dense_simulations, line_shape, max_rounds,  # noqa: F401
+                             max_simulations, refined_axis, rounds_needed, wide)
 from ..io.study_schema import Dim
 
-BRACKETED, NEVER_OVERTURNED, OVERTURNED_AT_START, FAILED = 0, 1, 2, 3
-BRACKET_NAMES = ("bracketed", "never_overturned", "overturned_at_start", "simulation_failed")
+BRACKETED, NEVER_OVERTURNED, OVERTURNED_AT_START, FAILED = 0, 1, 2, 3  # of BRACKET_NAMES
 OVERTURNED, STANDING = 1, 0  # values of the ``overturned`` variable (-1: failed)
 POINT = "point"  # the one dimension of a point study
-# A bracket wider than the tolerance by less than this fraction is closed: midpoints round.
-SLACK = 1e-9
 
 Brackets = namedtuple("Brackets", "lower upper flag simulations transitions coarse rounds")
 Brackets.__doc__ = """State of the bisection, one entry per line (lines in C order of the other
@@ -38,55 +42,11 @@ dimensions): ``lower`` highest value found standing, ``upper`` lowest value foun
 the coarse values' ``overturned`` codes, shape (n_lines, n_coarse), ``rounds`` done so far."""
 
 
-def refined_axis(study):
-    """Position of the refined dimension in ``study.dims`` and its axis."""
-    k = next(i for i, dim in enumerate(study.dims) if dim.name == study.refine.axis)
-    return k, study.dims[k].axes[0]
-
-
-def line_shape(study):
-    """Shape of the lines: the study's shape without the refined dimension."""
-    k, _ = refined_axis(study)
-    return tuple(dim.size for i, dim in enumerate(study.dims) if i != k)
-
-
 def coarse_cells(study):
     """Cell ids of the study's grid by line and coarse value, int64 of shape (n_lines, n)."""
     k, axis = refined_axis(study)
     ids = np.arange(study.n_cells, dtype=np.int64).reshape(study.shape)
     return np.moveaxis(ids, k, -1).reshape(-1, axis.coords.size)
-
-
-def wide(width, tolerance):
-    """True for a bracket that still needs a midpoint."""
-    return width > tolerance * (1.0 + SLACK)
-
-
-def rounds_needed(width, tolerance):
-    """Halvings that take a bracket of ``width`` down to ``tolerance``."""
-    n = 0
-    while wide(width / 2.0 ** n, tolerance):
-        n += 1
-    return n
-
-
-def max_rounds(study):
-    """Bisection rounds after the coarse one, at most (the widest coarse gap sets it)."""
-    _, axis = refined_axis(study)
-    return max(rounds_needed(w, study.refine.tolerance) for w in np.diff(axis.coords))
-
-
-def max_simulations(study):
-    """Most simulations a refine study can take: the grid, one midpoint per line and round."""
-    return study.n_cells + math.prod(line_shape(study)) * max_rounds(study)
-
-
-def dense_simulations(study):
-    """Cells of the grid of the same resolution: the refined axis spaced at the tolerance."""
-    _, axis = refined_axis(study)
-    span = float(axis.coords[-1] - axis.coords[0])
-    per_line = math.ceil(span / study.refine.tolerance * (1.0 - SLACK)) + 1
-    return math.prod(line_shape(study)) * per_line
 
 
 def start(coords, coarse):
