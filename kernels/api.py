@@ -216,13 +216,30 @@ def _message(status, impacts, logged, clamps):
     return text
 
 
+_COMPILED = {}  # (dispatcher, kinds of the arguments) -> compiled function
+
+
+def _kind(value):
+    """What numba's type of an argument depends on, found without typing it (typing a record
+    of ``SCENE_DTYPE`` takes about 1.8 ms in Python, more than a steady-rocking scene)."""
+    if isinstance(value, np.ndarray):
+        flags = value.flags
+        return (value.dtype, value.ndim, flags.c_contiguous, flags.f_contiguous,
+                flags.writeable, flags.aligned)
+    return type(value), getattr(value, "dtype", None)
+
+
 def _compiled(dispatcher, args):
     """The compiled function of ``dispatcher`` for the types of ``args``, compiled or loaded
-    from the cache now, to be called without numba's dispatch (which types a record
-    argument in Python the first time); ``dispatcher`` itself under ``NUMBA_DISABLE_JIT``."""
+    from the cache once per kind of arguments, to be called without numba's dispatch (which
+    types a record argument in Python on every call); ``dispatcher`` itself under
+    ``NUMBA_DISABLE_JIT``."""
     if not hasattr(dispatcher, "compile"):
         return dispatcher
-    return dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
+    key = (dispatcher, *map(_kind, args))
+    if key not in _COMPILED:
+        _COMPILED[key] = dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
+    return _COMPILED[key]
 
 
 def run_scene(scene, history=False, max_log=MAX_LOG):
@@ -235,7 +252,7 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     row = scene_row(scene, records)
     rec = record_buffer(records)
     res = np.zeros(codes.N_RES)
-    log = np.zeros((max_log, codes.N_LOG))
+    log = np.empty((max_log, codes.N_LOG))  # rows [:n_log] are written
     n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
     args = (as_records(row)[0], rec, res, log, hist, control(cell=0))
