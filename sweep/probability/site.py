@@ -230,9 +230,9 @@ def _run_study(path):
     it was read."""
     import xarray as xr
 
-    from .. import run
     from ..io.study_schema import load_study
     from ..runner import fingerprint, store
+    from ..runner.command import main as run_command
 
     study = load_study(path, check_cells=False)
     stamp = fingerprint.combined(fingerprint.components(study))
@@ -242,7 +242,7 @@ def _run_study(path):
         stale = study.output.exists() or parts not in (None, stamp)
         with warnings.catch_warnings():  # the levels were checked in the bodies file
             warnings.filterwarnings("ignore", r"grid\.pga\b", InputWarning)
-            status = run.main([str(path), "--quiet", *(["--force"] if stale else [])])
+            status = run_command([str(path), "--quiet", *(["--force"] if stale else [])])
         if status == 130:
             raise KeyboardInterrupt
         if status != 0:

@@ -243,7 +243,7 @@ def _sigint_ignored():
 
 
 def run(comm, args):
-    """Every rank's part of ``python -m sweep.run`` (``args`` of ``sweep.run.parse_args``);
+    """Every rank's part of ``python -m sweep.run`` (``args`` of ``runner.command.parse_args``);
     returns the exit status: 0 done, 2 bad input or refused, 130 interrupted."""
     state = _State()
     try:
