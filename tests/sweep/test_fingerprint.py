@@ -3,6 +3,7 @@ a resume after any of them changed never mixes cells of old and new inputs."""
 import numpy as np
 import xarray as xr
 from study_helpers import cli, make_study, without_run_attrs, write_study
+from test_layers import MODULES, ROOT, imports
 
 from sweep.io.study_schema import load_study
 from sweep.runner import fingerprint, store
@@ -55,6 +56,24 @@ def test_program_digest_reads_every_kernel_source():
     assert digest == fingerprint.source_digest() and len(digest) == 64
     assert fingerprint.source_digest(("kernels/*.py",)) != fingerprint.source_digest(
         ("kernels/driver.py",))
+
+
+def test_program_sources_hold_every_module_a_cell_runs():
+    """Every module that ``runner.cells`` reaches by its imports (functions included) is one of
+    ``PROGRAM_SOURCES``, so that code moved into a new file is still fingerprinted; the
+    version is a component of its own (``components``), and package ``__init__`` files only
+    hold the packages' docstrings and the public API."""
+    held = {path.resolve() for pattern in fingerprint.PROGRAM_SOURCES
+            for path in ROOT.glob(pattern)}
+    reached, todo = set(), ["sweep.runner.cells"]
+    while todo:
+        name = todo.pop()
+        if name in MODULES and name not in reached:
+            reached.add(name)
+            todo += [target for _, _, target in imports(name, MODULES[name])]
+    assert {"sweep.bodies", "sweep.io.study_grid", "sweep.groundmotion.record"} <= reached
+    assert sorted(name for name in reached if MODULES[name].resolve() not in held
+                  and MODULES[name].name != "__init__.py") == ["sweep._version"]
 
 
 def test_record_edited_between_kill_and_resume_is_never_mixed(tmp_path):
