@@ -84,10 +84,10 @@ def _say(text):
 
 
 def _write_studies(survey, folder):
-    from .probability import site
+    from .probability import site_studies
 
-    results = site.results_folder(survey.source)
-    written = site.write_studies(survey, folder, results)
+    results = site_studies.results_folder(survey.source)
+    written = site_studies.write_studies(survey, folder, results)
     print(f"wrote {len(written)} studies (one per body that rocks) to {folder}; their "
           f"datasets go to {results.resolve()}, where python -m sweep.estimate "
           f"{survey.source} reads them:")
@@ -99,7 +99,7 @@ def _write_studies(survey, folder):
 def _site_json(site, deterministic, probabilistic):
     """One site's result, SI: its name and coordinates, the deterministic estimate's keys,
     ``ensemble`` and ``side_by_side`` (None without an ensemble)."""
-    from .probability.site import summary
+    from .probability.site_report import summary
 
     out = {"site": site.name, "latitude": site.latitude, "longitude": site.longitude,
            **deterministic, "ensemble": None, "side_by_side": None}
@@ -174,7 +174,7 @@ def _site_text(site, deterministic, probabilistic):
     text = format_text(deterministic, None if site.name is None else site.name + where)
     if probabilistic is None:
         return text
-    from .probability.site import format_text as probability_text
+    from .probability.site_report import format_text as probability_text
     return text + "\n\n" + probability_text(probabilistic, deterministic["lower_limits"])
 
 
@@ -188,11 +188,12 @@ def main(argv=None):
         return _write_studies(survey, Path(args.write_study))
     probabilistic = [None] * len(survey.sites)
     if survey.ensemble is not None:
-        from .probability import site
+        from .probability import site, site_studies
 
         try:
-            datasets = site.ensemble_datasets(survey, site.results_folder(args.bodies), _say)
-        except site.RunFailed as err:
+            datasets = site_studies.ensemble_datasets(
+                survey, site_studies.results_folder(args.bodies), _say)
+        except site_studies.RunFailed as err:
             _say(f"error: {err}")
             return EXIT_FAILED
         probabilistic = [site.estimate_site(s, survey.ensemble, datasets)

@@ -28,7 +28,7 @@ QUANTILE_COLOUR = "#6a3d9a"
 
 def _gal(a):
     """An acceleration [m/s^2] in gal, written with the arithmetic of the text
-    (``sweep.probability.site.format_text``): '331'."""
+    (``sweep.probability.site_report.format_text``): '331'."""
     return f"{a * 100:.0f}"
 
 

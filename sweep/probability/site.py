@@ -48,32 +48,19 @@ shaking from below, those left standing (set S) from above:
   not simulated, and listed with the reason.  A body that slid (``slid`` = 1) in most of the
   simulations at the two levels around its 50 % bound is flagged.
 
-Each distinct body (B, H, i_g, mu) is one study: levels x members, run by ``python -m
-sweep.run`` in this process (:func:`ensemble_datasets`) into ``<folder>/<key>.nc`` with the
-study beside it as ``<key>.yaml``; a dataset whose fingerprint matches the inputs is reused,
-so a second estimate is instant.  The study schema wants distinct values along every axis, and
-bodies of one site often share B, H or mu, so the bodies cannot be one zipped dimension; one
-study per body also lets an added body or a second site reuse what is done.  On a cluster:
-``python -m sweep.estimate BODIES.yaml --write-study DIR`` writes the studies, ``mpiexec -n N
-python -m sweep.run DIR/<key>.yaml`` runs each, and the estimate then reads their datasets.
-SI units throughout.
+The simulations (one study per distinct body, run or reused: ``site_studies``) give o_ijm;
+the text and JSON of an estimate are ``site_report``'s.  SI units throughout.
 """
 import math
-import warnings
 from collections import namedtuple
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from ..io import records
-from ..io.problems import InputWarning
-from ..io.scene_schema import T_TAIL
 from ..paper import criteria
-from ..paper import estimate as paper_estimate
-from .fragility import counted
+from .site_studies import (friction, member_labels, simulated_time, sliding_reason, specimen,
+                           specimen_key)
 
-ARIAS_END = 0.95  # a motion "ends" when 95 % of its Arias intensity has arrived
 MAP_POINTS = 121  # grid points along each axis of the (PGA, PGV) map
 MAP_SUPPORT = 0.5  # the map is blank where the kernel weights (1 at a point) sum below this
 SILVERMAN = 1.06  # normal-reference factor of the bandwidth in ln PGV/PGA
@@ -84,193 +71,11 @@ MIN_MATCHES = 5
 MIN_LEVELS = 3
 WILSON_CONFIDENCE = 0.95
 
-Specimen = namedtuple("Specimen", "B H i_g mu")
-Specimen.__doc__ = """What a simulation of a body needs [SI]: breadth, height, radius of
-gyration (None: uniform) and friction coefficient."""
-
 Bound = namedtuple("Bound", "value beyond")
 Bound.__doc__ = """A bound [SI]: ``value``, or None when it lies above the highest level;
 ``beyond`` None inside the levels, ``"below"`` when it is at or below the lowest level (then
 ``value`` is that level), ``"above"`` when no level reaches it."""
 
-
-# --- the bodies and their studies -------------------------------------------------------------
-
-def friction(body, ensemble):
-    """The friction coefficient simulated for ``body``: its own, else the ensemble's."""
-    return ensemble.mu if body.mu is None else body.mu
-
-
-def sliding_reason(body, ensemble):
-    """Why ``body`` is kept out of the rocking bounds (mu < B/H), or None."""
-    mu = friction(body, ensemble)
-    if mu >= body.B / body.H:
-        return None
-    reason = paper_estimate.sliding_reason(mu, body.B, body.H)
-    return reason if body.mu is not None else \
-        f"{reason} (mu = {mu:g} is the ensemble's default: give the body's own if known)"
-
-
-def specimen(body, ensemble):
-    """The :class:`Specimen` simulated for ``body``."""
-    return Specimen(body.B, body.H, body.i_g, friction(body, ensemble))
-
-
-def specimen_key(spec):
-    """A file name for a specimen: ``B24cm_H75cm_mu0.6``."""
-    key = f"B{spec.B * 100:.6g}cm_H{spec.H * 100:.6g}cm"
-    if spec.i_g is not None:
-        key += f"_ig{spec.i_g * 100:.6g}cm"
-    return key + f"_mu{spec.mu:.6g}"
-
-
-def site_specimens(survey):
-    """Every distinct specimen simulated for the sites of ``survey`` (sliding bodies left
-    out), in order of first appearance."""
-    found = {}
-    for site in survey.sites:
-        for body in site.bodies:
-            if sliding_reason(body, survey.ensemble) is None:
-                spec = specimen(body, survey.ensemble)
-                found.setdefault(specimen_key(spec), spec)
-    return found
-
-
-def member_labels(ensemble):
-    """A short label of each member: the record's name or file name, or ``seed k``."""
-    if ensemble.records:
-        return [r if r in records.NAMES else Path(r).name for r in ensemble.records]
-    return [f"seed {k}" for k in range(ensemble.seeds)]
-
-
-def member_records(ensemble):
-    """The accelerogram (``io.records.Record``) of every member, before scaling."""
-    if ensemble.records:
-        return [records.load_record(r) if r in records.NAMES else records.read_record_file(r)
-                for r in ensemble.records]
-    from ..groundmotion import stochastic
-
-    scenario = {k: v for k, v in ensemble.synthetic.items() if k != "dt"}
-    dt = {} if ensemble.synthetic["dt"] is None else {"dt": ensemble.synthetic["dt"]}
-    return [stochastic.generate(**scenario, seed=seed, **dt) for seed in range(ensemble.seeds)]
-
-
-def arias_end(record, fraction=ARIAS_END):
-    """Time [s] at which ``fraction`` of the record's Arias intensity has arrived."""
-    husid = np.cumsum(np.square(record.samples))
-    return float(np.searchsorted(husid, fraction * husid[-1]) * record.dt)
-
-
-def simulated_time(ensemble):
-    """``t_end`` of the studies: the ensemble's, else the latest time at which a member's
-    Arias intensity reaches 95 %, plus ``T_TAIL`` for the body to settle or fall [s]."""
-    if ensemble.t_end is not None:
-        return ensemble.t_end
-    return max(arias_end(r) for r in member_records(ensemble)) + T_TAIL
-
-
-def study_dict(spec, ensemble, t_end, output, name="site"):
-    """The study of one specimen under the ensemble: grid ``pga`` (levels) x ``record`` or
-    ``seed`` (members), in that order; SI numbers (the levels with their unit, so that low
-    ones are not taken for bare g), absolute paths."""
-    body = {"B": spec.B, "H": spec.H, **({} if spec.i_g is None else {"i_g": spec.i_g})}
-    contact = {"mu": spec.mu, **{k: v for k, v in (("e_x", ensemble.e_x), ("e_y", ensemble.e_y))
-                                 if v is not None}}
-    if ensemble.records:
-        first = ensemble.records[0]
-        excitation = {"kind": "record", **({"name": first} if first in records.NAMES
-                                           else {"path": first})}
-        members = {"record": list(ensemble.records)}
-    else:
-        excitation = {"kind": "synthetic", **{k: v for k, v in ensemble.synthetic.items()
-                                              if v is not None}, "seed": 0}
-        members = {"seed": list(range(ensemble.seeds))}
-    return {"name": f"{name}_{specimen_key(spec)}",
-            "title": f"B = {spec.B * 100:.4g} cm, H = {spec.H * 100:.4g} cm, mu = {spec.mu:g} "
-                     "under a site's ensemble of motions (sweep.estimate)",
-            "scene": {"body": body, "contact": contact,
-                      "excitation": {"horizontal": excitation}, "solver": {"t_end": t_end}},
-            "grid": {"pga": {"values": list(ensemble.levels), "unit": "m/s^2"}, **members},
-            "output": str(Path(output).resolve())}
-
-
-def results_folder(bodies_path):
-    """Where the datasets of a bodies file go: ``results/<file stem>/`` beside it."""
-    path = Path(bodies_path)
-    return path.parent / "results" / path.stem
-
-
-def write_studies(survey, folder, results):
-    """Write the study of every specimen of ``survey`` to ``folder``, its output in
-    ``results``; the paths written."""
-    import yaml
-
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    t_end = simulated_time(survey.ensemble)
-    name = "site" if survey.source is None else survey.source.stem
-    written = []
-    for key, spec in site_specimens(survey).items():
-        study = study_dict(spec, survey.ensemble, t_end, Path(results) / f"{key}.nc", name)
-        path = folder / f"{key}.yaml"
-        path.write_text(yaml.safe_dump(study, sort_keys=False))
-        written.append(path)
-    return written
-
-
-class RunFailed(RuntimeError):
-    """A study of the estimate did not run to its end."""
-
-
-def _run_study(path):
-    """The dataset of the study at ``path`` and whether it was computed now: its output when
-    the fingerprint of its inputs matches, else computed by ``python -m sweep.run`` in this
-    process (``--force`` when the output or part files hold other inputs).  Its doubts of
-    the PGA levels are not said again for every body: they are the bodies file's, said where
-    it was read."""
-    import xarray as xr
-
-    from ..io.study_schema import load_study
-    from ..runner import fingerprint, store
-    from ..runner.command import main as run_command
-
-    study = load_study(path, check_cells=False)
-    stamp = fingerprint.combined(fingerprint.components(study))
-    ran = not store.finished_earlier(study.output, stamp)
-    if ran:
-        parts = store.PartStore(store.parts_dir(study.output)).manifest_stamp()
-        stale = study.output.exists() or parts not in (None, stamp)
-        with warnings.catch_warnings():  # the levels were checked in the bodies file
-            warnings.filterwarnings("ignore", r"grid\.pga\b", InputWarning)
-            status = run_command([str(path), "--quiet", *(["--force"] if stale else [])])
-        if status == 130:
-            raise KeyboardInterrupt
-        if status != 0:
-            raise RunFailed(f"python -m sweep.run {path} ended with status {status}")
-    with xr.open_dataset(study.output) as ds:
-        return ds.load(), ran
-
-
-def ensemble_datasets(survey, folder, say=None):
-    """The dataset of every specimen of ``survey``: {key: xarray.Dataset}.
-
-    The studies are written to ``folder`` (``<key>.yaml``) with their outputs beside them
-    (``<key>.nc``) and run, or their outputs reused (:func:`_run_study`).  ``say(text)`` is
-    told what was computed.
-    """
-    import time
-
-    start = time.perf_counter()
-    written = write_studies(survey, folder, folder)
-    datasets, computed = {}, 0
-    for path in written:
-        datasets[path.stem], ran = _run_study(path)
-        computed += ran
-    if say is not None and computed:
-        cells = len(survey.ensemble.levels) * survey.ensemble.members
-        say(f"{computed} of {len(written)} bodies simulated ({cells} cells each) in "
-            f"{time.perf_counter() - start:.1f} s; datasets in {folder}")
-    return datasets
 
 
 # --- the likelihood and the posterior ---------------------------------------------------------
@@ -767,8 +572,8 @@ def estimate_site(site, ensemble, datasets):
     site : io.bodies_schema.Site
     ensemble : io.bodies_schema.Ensemble
     datasets : dict of str to xarray.Dataset
-        {specimen key: dataset} (:func:`ensemble_datasets`), with dimensions ``pga`` and the
-        members' (``record`` or ``seed``).
+        {specimen key: dataset} (``site_studies.ensemble_datasets``), with dimensions
+        ``pga`` and the members' (``record`` or ``seed``).
 
     Returns
     -------
@@ -809,153 +614,3 @@ def estimate_site(site, ensemble, datasets):
                                             ensemble.probabilities),
                         failed_cells=int(np.sum(~np.isfinite(overturned))),
                         datasets=[str(datasets[k].encoding.get("source", k)) for k in keys])
-
-
-# --- output -----------------------------------------------------------------------------------
-
-MAP_METHOD = ("Gaussian-kernel average of the consistency indicator in (ln PGA, ln PGV/PGA); "
-              "the region at q is where it is at least q")
-PRIOR = "uniform in ln PGA over the levels"
-
-
-def _peak(consistency_map):
-    """The largest probability of the map (NaN when it is blank)."""
-    finite = consistency_map.probability[np.isfinite(consistency_map.probability)]
-    return float(finite.max()) if finite.size else math.nan
-
-
-def _bounds_json(bounds, probabilities):
-    return [{"probability": q, "value": b.value, "beyond": b.beyond}
-            for q, b in zip(probabilities, bounds)]
-
-
-def summary(estimate):
-    """The estimate of a site as a JSON-ready dict, SI units; lists of probabilities are in
-    the order of ``probabilities``."""
-    ens = estimate.ensemble
-    post, m, sup = estimate.posterior, estimate.map, estimate.support
-    quantiles = estimate.quantiles
-    return {
-        "members": estimate.members, "levels": list(ens.levels), "t_end": estimate.t_end,
-        "probabilities": list(ens.probabilities), "mu_default": ens.mu,
-        "failed_cells": estimate.failed_cells,
-        "excluded": [{"name": name, "reason": reason} for name, reason in estimate.excluded],
-        "bodies": [{"name": b.name, "overturned": b.overturned, "B": b.B, "H": b.H, "mu": b.mu,
-                    "mu_given": b.mu_given, "a_o": b.west, "fragility": b.fragility,
-                    "fragility_lower": b.lower, "fragility_upper": b.upper,
-                    "members_counted": b.members,
-                    "bound": "lower" if b.overturned else "upper",
-                    "bounds": _bounds_json(b.bounds, ens.probabilities),
-                    "slid_near_bound": b.slid, "slid_flag": b.slid_near_bound}
-                   for b in estimate.bodies],
-        "likelihood": estimate.likelihood, "members_counted": estimate.counted,
-        "support": None if sup is None else {
-            "simulations_reproducing": sup.matches, "simulations": sup.cells,
-            "levels_with_likelihood": sup.levels, "levels": sup.of_levels,
-            "sufficient": sup.sufficient, "minimum": {"simulations": MIN_MATCHES,
-                                                      "levels": MIN_LEVELS},
-            "add_levels_between": None if sup.between is None else list(sup.between)},
-        "posterior": None if post is None else {
-            "prior": PRIOR, "pga": None if quantiles is None else quantiles[0],
-            "pgv": None if quantiles is None else quantiles[1], "cut_below": post.cut_below,
-            "cut_above": post.cut_above, "west_floor": estimate.west_floor,
-            "percentiles_withheld": support_advice(sup)},
-        "posterior_note": estimate.reason,
-        "region": None if m is None else {
-            "method": MAP_METHOD, "bandwidth_ln_pga": m.bandwidth[0],
-            "bandwidth_ln_pgv_over_pga": m.bandwidth[1],
-            "peak": _peak(m),
-            "levels": [{"probability": q, "pga": None if r is None else [r[0], r[1]],
-                        "pgv": None if r is None else [r[2], r[3]]}
-                       for q, r in zip(ens.probabilities, m.regions)]},
-        "datasets": estimate.datasets,
-    }
-
-
-def _gal(a):
-    return f"{a * 100:.0f}"
-
-
-def _bound_text(bound, levels):
-    if bound.beyond == "above":
-        return f"> {_gal(levels[-1])}"
-    if bound.beyond == "below":
-        return f"<= {_gal(bound.value)}"
-    return _gal(bound.value)
-
-
-def format_text(estimate, lower_limits=None, width=92):
-    """The estimate as tables and sentences, in the paper's units (gal, cm/s); with the
-    deterministic ``lower_limits`` (``sweep.paper.estimate``) side by side."""
-    import textwrap
-
-    ens = estimate.ensemble
-    levels = ens.levels
-    qs = " / ".join(f"{q:.0%}" for q in ens.probabilities)
-    lines = [textwrap.fill(
-        f"Ensemble: {counted(len(estimate.members), 'motion')} "
-        f"({', '.join(estimate.members[:6])}"
-        f"{', ...' if len(estimate.members) > 6 else ''}) scaled to {len(levels)} PGA levels "
-        f"from {_gal(levels[0])} to {_gal(levels[-1])} gal, simulated for "
-        f"{estimate.t_end:.1f} s; mu = {ens.mu:g} for the bodies that give none.", width)]
-    if estimate.failed_cells:
-        lines.append(f"{counted(estimate.failed_cells, 'simulation')} failed; left out of the "
-                     "counts.")
-    for name, reason in estimate.excluded:
-        lines.append(textwrap.fill(f"Kept out: {name}: {reason}.", width,
-                                   subsequent_indent="  "))
-    if estimate.bodies:
-        header = (f"{'body':<18} {'state':<10} {'a_o [gal]':>9}  {'slid':>4}  "
-                  f"bound at {qs} [gal]")
-        lines += ["", header, "-" * len(header)]
-        note = ("slid: share of the simulations at the two levels around the body's 50 % "
-                "bound in which it slid")
-    for b in estimate.bodies:
-        kind = "lower" if b.overturned else "upper"
-        bounds = " / ".join(_bound_text(x, levels) for x in b.bounds)
-        slid = "most" if b.slid_near_bound else "" if np.isnan(b.slid) else f"{b.slid:.0%}"
-        lines.append(f"{b.name[:18]:<18} {'overturned' if b.overturned else 'standing':<10} "
-                     f"{_gal(b.west):>9}  {slid:>4}  {kind}: {bounds}")
-    if estimate.bodies:
-        lines.append(note)
-    flagged = [b.name for b in estimate.bodies if b.slid_near_bound]
-    if flagged:
-        lines.append(textwrap.fill(
-            f"Slid in most of the simulations near their bound: {', '.join(flagged)} (the "
-            "bound mixes sliding with rocking; a known mu would help).", width))
-    lines.append("")
-    post = estimate.posterior
-    if post is None:
-        lines.append(textwrap.fill(f"No posterior: {estimate.reason}.", width))
-        return "\n".join(lines)
-    lines.append(textwrap.fill(
-        f"The site's shaking given every body (posterior, prior {PRIOR}), carried by "
-        f"{estimate.support.text()} that reproduce every body:", width))
-    quantiles = estimate.quantiles
-    head = f"{'':<12} {'deterministic':>16}  " + ("  ".join(
-        f"{q:>7.0%}" for q in ens.probabilities) if quantiles else "")
-    lines.append(head.rstrip())
-    for k, (key, unit, shown) in enumerate((("pga", "gal", _gal),
-                                            ("pgv", "cm/s", lambda v: f"{v * 100:.3g}"))):
-        limit = "" if lower_limits is None else f">= {shown(lower_limits[key]['value'])}"
-        values = "  ".join(f"{shown(v):>7}" for v in quantiles[k]) if quantiles else ""
-        lines.append(f"{key.upper() + ' [' + unit + ']':<12} {limit:>16}  {values}".rstrip())
-    if not quantiles:
-        lines.append(textwrap.fill(f"  Percentiles withheld: {support_advice(estimate.support)}.",
-                                   width, subsequent_indent="  "))
-    if post.cut_below or post.cut_above:
-        ends = [end for end, cut in (("lowest", post.cut_below), ("highest", post.cut_above))
-                if cut]
-        lines.append(textwrap.fill(
-            f"  The likelihood is not 0 at the {' and '.join(ends)} level: the quantiles on "
-            "that side are set by the range of levels, not by the bodies.", width,
-            subsequent_indent="  "))
-    m = estimate.map
-    lines.append("Motions consistent with every body, in (PGA, PGV):")
-    for q, region in zip(ens.probabilities, m.regions):
-        if region is None:
-            lines.append(f"  at >= {q:.0%}: nowhere (at most {_peak(m):.0%})")
-        else:
-            lines.append(f"  at >= {q:.0%}: PGA {_gal(region[0])}-{_gal(region[1])} gal, "
-                         f"PGV {region[2] * 100:.3g}-{region[3] * 100:.3g} cm/s")
-    return "\n".join(lines)

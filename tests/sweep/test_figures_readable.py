@@ -21,7 +21,7 @@ from sweep.plots.limits import figure_limits
 from sweep.plots.map import figure_map
 from sweep.plots.site import figure_site
 from sweep.plots.spectra import figure_spectrum
-from sweep.probability import site
+from sweep.probability import site, site_report, site_studies
 from sweep.probability.fragility import cells, fragility
 
 LONG_TITLE = ("Overturning of a 20 x 80 cm marble statue on its plinth under synthetic motions "
@@ -174,11 +174,11 @@ def graveyard(tmp_path_factory):
                      "levels": {"pga": {"start": "1 m/s^2", "stop": "12 m/s^2", "num": 6}},
                      "t_end": "8 s"}}, sort_keys=False))
     survey = load_survey(path)
-    datasets = site.ensemble_datasets(survey, site.results_folder(path))
+    datasets = site_studies.ensemble_datasets(survey, site_studies.results_folder(path))
     yard = survey.sites[0]
     estimate = site.estimate_site(yard, survey.ensemble, datasets)
     limits = deterministic(yard.bodies)["lower_limits"]
-    return estimate, limits, site.format_text(estimate, limits)
+    return estimate, limits, site_report.format_text(estimate, limits)
 
 
 def test_site_figure_is_in_gal_with_the_numbers_of_the_text(graveyard):

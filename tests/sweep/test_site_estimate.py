@@ -16,7 +16,7 @@ import yaml
 from sweep import estimate
 from sweep.io.bodies_schema import load_survey
 from sweep.plots.site import figure_site
-from sweep.probability import site
+from sweep.probability import site, site_report, site_studies
 from study_helpers import cli
 
 G = 9.80665
@@ -114,7 +114,7 @@ def test_identical_members_give_zero_one_and_bracketing_bounds():
     datasets = {}
     for body in survey.sites[0].bodies:
         o = np.repeat((np.arange(levels.size) >= step[body.name])[:, None], 3, axis=1)
-        key = site.specimen_key(site.specimen(body, ens))
+        key = site_studies.specimen_key(site_studies.specimen(body, ens))
         datasets[key] = _fake_dataset(o, 0.1 * levels[:, None] * np.ones(3))
     result = site.estimate_site(survey.sites[0], ens, datasets)
     for body in result.bodies:
@@ -146,7 +146,7 @@ def _survey_of_steps(fallen, stood, levels=9):
     datasets = {}
     for body, steps in zip(survey.sites[0].bodies, (fallen, stood)):
         o = np.arange(x.size)[:, None] >= np.array(steps)[None, :]
-        datasets[site.specimen_key(site.specimen(body, ens))] = _fake_dataset(
+        datasets[site_studies.specimen_key(site_studies.specimen(body, ens))] = _fake_dataset(
             o, 0.1 * x[:, None] * np.ones(3))
     return survey, x, site.estimate_site(survey.sites[0], ens, datasets)
 
@@ -162,12 +162,12 @@ def test_percentiles_on_one_matching_simulation_are_withheld():
     assert result.support == site.Support(1, 27, 1, 9, (x[2], x[4]))
     assert not result.support.sufficient and result.quantiles is None
     assert result.posterior is not None  # the density is still there to be drawn
-    text = site.format_text(result)
+    text = site_report.format_text(result)
     assert "1 of 27 simulations (at 1 of 9 levels)" in text
     assert "Percentiles withheld" in text
     assert f"add levels between {x[2] * 100:.0f} and {x[4] * 100:.0f} gal" in " ".join(
         text.split())
-    summary = site.summary(result)
+    summary = site_report.summary(result)
     assert summary["posterior"]["pga"] is None and summary["posterior"]["pgv"] is None
     assert summary["support"]["simulations_reproducing"] == 1
     assert summary["support"]["sufficient"] is False
@@ -179,7 +179,7 @@ def test_percentiles_on_one_matching_simulation_are_withheld():
     # five matches at three levels are enough: member 0 at levels 3-5, member 1 at 5-6
     _, _, enough = _survey_of_steps(fallen=(3, 5, 7), stood=(6, 7, 7))
     assert (enough.support.matches, enough.support.levels) == (5, 4)
-    assert enough.quantiles is not None and "Percentiles withheld" not in site.format_text(
+    assert enough.quantiles is not None and "Percentiles withheld" not in site_report.format_text(
         enough)
 
 
@@ -207,7 +207,7 @@ def yard(tmp_path_factory):
     folder = tmp_path_factory.mktemp("yard")
     path = _bodies_file(folder)
     survey = load_survey(path)
-    datasets = site.ensemble_datasets(survey, site.results_folder(path))
+    datasets = site_studies.ensemble_datasets(survey, site_studies.results_folder(path))
     return path, survey, [site.estimate_site(s, survey.ensemble, datasets)
                           for s in survey.sites]
 
@@ -233,7 +233,7 @@ def test_sliding_bodies_are_kept_out_and_said_so(yard):
     assert [b.name for b in first.bodies] == ["slim", "stout"]
     (name, reason), = first.excluded
     assert name == "slab" and "mu = 0.5 < B/H = 0.909" in reason
-    assert all("mu0.5" not in key for key in site.site_specimens(survey))  # not simulated
+    assert all("mu0.5" not in key for key in site_studies.site_specimens(survey))  # not simulated
     # the deterministic part: the slab (a_o = 0.91 g) would set the PGA limit; it does not
     result = estimate.estimate(survey.sites[0].bodies)
     assert result["lower_limits"]["pga"]["body"] == "slim"
@@ -246,7 +246,7 @@ def test_the_ensemble_default_friction_can_exclude_too():
         {"name": "squat", "B": "40 cm", "H": "50 cm", "overturned": True}],
         "ensemble": {"motions": {"record": RECORDS}, "contact": {"mu": 0.5},
                      "levels": {"pga": [1.0, 2.0]}}})
-    reason = site.sliding_reason(survey.sites[0].bodies[0], survey.ensemble)
+    reason = site_studies.sliding_reason(survey.sites[0].bodies[0], survey.ensemble)
     assert "the ensemble's default" in reason
     # the deterministic part keeps it (its mu is not known)
     result = estimate.estimate(survey.sites[0].bodies)
@@ -263,7 +263,7 @@ def _run(argv, capsys):
 
 def test_command_json_csv_and_figures(yard, tmp_path, capsys):
     path, _, _ = yard
-    results = site.results_folder(path)
+    results = site_studies.results_folder(path)
     stamps = {p.name: p.stat().st_mtime_ns for p in results.glob("*.nc")}
     assert len(stamps) == 2
     status, out, _ = _run([path, "--json", "--csv", tmp_path / "t.csv", "-o",
@@ -305,13 +305,13 @@ def test_a_second_run_reuses_the_datasets(tmp_path, capsys):
     status, first, said = _run([path], capsys)
     simulating = time.perf_counter() - start
     assert status == 0 and "2 of 2 bodies simulated" in said
-    stamps = {p.name: p.stat().st_mtime_ns for p in site.results_folder(path).glob("*.nc")}
+    stamps = {p.name: p.stat().st_mtime_ns for p in site_studies.results_folder(path).glob("*.nc")}
     start = time.perf_counter()
     status, second, said = _run([path], capsys)
     reading = time.perf_counter() - start
     assert status == 0 and said == "" and second == first
     assert {p.name: p.stat().st_mtime_ns
-            for p in site.results_folder(path).glob("*.nc")} == stamps
+            for p in site_studies.results_folder(path).glob("*.nc")} == stamps
     print(f"reuse: {reading:.2f} s, simulation: {simulating:.2f} s")
     assert reading < simulating / 3, (reading, simulating)
 
