@@ -1,13 +1,6 @@
-"""What a body does after landing from a translation jump (Ishiyama 1982, Fig. 5;
-docs/landing.md): every cell of a landing study classified as sliding, tilting forward or back
-and standing, or overturning forward or back, drawn as a map of these classes.
-
-"Forward" is the direction of the horizontal velocity at release: theta < 0 for x_dot >= 0
-(rotation about the right corner, PHYSICS.md 1.1).  The dataset says whether and to which
-side a body overturned (``overturned``, ``overturn_direction``) and how far it tilted
-(``max_abs_theta``), not to which side a body that stood tilted: those cells are simulated
-again with their history (as ``sweep.paper.classify`` does for Figs 11-16) and the side of
-their first tilt beyond 0.05 alpha is read from it.
+"""The landing figure (Ishiyama 1982, Fig. 5; docs/landing.md): the class of every cell of a
+landing study (``sweep.paper.landing``: slides, tilts forward or back and stands, overturns
+forward or back) drawn as a map, with our Fig. 5 panels or Fig. 5's landing velocity marked.
 """
 import itertools
 import math
@@ -15,25 +8,23 @@ import textwrap
 
 import matplotlib.pyplot as plt
 import numpy as np
-import xarray as xr
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 
-from kernels.api import run_scene
-
 from ..paper import classify
 from ..paper.criteria import G
+from ..paper.landing import (FAILED, OVERTURNS_BACK, OVERTURNS_FORWARD, SLIDES, TILTS_BACK,
+                             TILTS_FORWARD, landing_classes)
 from .map import panel_title
 from .style import axis_label, study_axis
 
-FAILED, SLIDES, TILTS_FORWARD, TILTS_BACK, OVERTURNS_FORWARD, OVERTURNS_BACK = range(-1, 5)
-CLASSES = {  # code -> (flag meaning, legend text, colour)
-    FAILED: ("failed", "failed", "#9e9e9e"),
-    SLIDES: ("slides", f"slides (|θ| < {classify.EPSILON:g} α)", "#f0f0f0"),
-    TILTS_FORWARD: ("tilts_forward", "tilts forward, stands", "#fdae6b"),
-    TILTS_BACK: ("tilts_back", "tilts back, stands", "#9ecae1"),
-    OVERTURNS_FORWARD: ("overturns_forward", "overturns forward", "#d94801"),
-    OVERTURNS_BACK: ("overturns_back", "overturns back", "#08519c"),
+LEGEND = {  # class code (sweep.paper.landing) -> (legend text, colour)
+    FAILED: ("failed", "#9e9e9e"),
+    SLIDES: (f"slides (|θ| < {classify.EPSILON:g} α)", "#f0f0f0"),
+    TILTS_FORWARD: ("tilts forward, stands", "#fdae6b"),
+    TILTS_BACK: ("tilts back, stands", "#9ecae1"),
+    OVERTURNS_FORWARD: ("overturns forward", "#d94801"),
+    OVERTURNS_BACK: ("overturns back", "#08519c"),
 }
 # (e_x, e_y) of our panels, as in studies/fig05[a-d]_after_jump.yaml
 PAPER_PANELS = {"5a": (-1.0, 0.2), "5b": (-0.9, 0.2), "5c": (0.0, 0.0), "5d": (-0.9, 0.8)}
@@ -44,58 +35,6 @@ MAX_PANELS = 9  # more combinations of the other axes than this: the first ones 
 # impulse, proportional to 1 + e_x (docs/landing.md (L2)), is small and the outcomes change.
 E_X_OFFSET = 0.05
 E_X_TICKS = (-1.0, -0.95, -0.9, -0.8, -0.5, 0.0, 0.5, 1.0)
-
-
-def first_tilt(scene, alpha):
-    """Sign of theta at the first tilt beyond ``classify.EPSILON`` alpha of a resolved scene,
-    simulated again with its history every ``classify.DT_OUT`` s (at its largest |theta| if no
-    sample lies beyond)."""
-    scene["solver"]["dt_out"] = classify.DT_OUT  # output sampling only: the same trajectory
-    theta = run_scene(scene, history=True).history["theta"]
-    beyond = np.flatnonzero(np.abs(theta) >= classify.EPSILON * alpha)
-    return np.sign(theta[beyond[0] if beyond.size else np.argmax(np.abs(theta))])
-
-
-def landing_classes(ds):
-    """The class of every cell of a landing study's dataset.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A dataset of ``sweep.run`` (its ``study`` attribute holds the study's text).
-
-    Returns
-    -------
-    xarray.DataArray
-        int8 on the dimensions of ``outcome``: one of ``CLASSES`` (``flag_values``,
-        ``flag_meanings``).  A cell slides when its largest |theta| stays below
-        ``classify.EPSILON`` alpha; a cell that stood is classed by its first tilt
-        (:func:`first_tilt`).
-    """
-    study = classify.study_of(ds)
-    outcome = ds["outcome"]
-    failed = outcome.values.ravel() < 0
-    overturned = ds["overturned"].values.ravel() == 1
-    direction = ds["overturn_direction"].values.ravel()
-    theta_max = ds["max_abs_theta"].values.ravel()
-    classes = np.full(outcome.size, FAILED, dtype=np.int8)
-    for index in np.flatnonzero(~failed):
-        scene = classify.resolved_cell(study, index)
-        forward = -1 if scene["initial"]["x_dot"] >= 0 else 1  # sign of theta tilting forward
-        alpha = math.atan2(scene["body"]["B"], scene["body"]["H"])
-        if overturned[index]:
-            classes[index] = OVERTURNS_FORWARD if direction[index] == forward else OVERTURNS_BACK
-        elif theta_max[index] < classify.EPSILON * alpha:
-            classes[index] = SLIDES
-        else:
-            classes[index] = (TILTS_FORWARD if first_tilt(scene, alpha) == forward
-                              else TILTS_BACK)
-    codes = sorted(CLASSES)
-    return xr.DataArray(classes.reshape(outcome.shape), coords=outcome.coords, dims=outcome.dims,
-                        name="landing_class",
-                        attrs={"long_name": "what the body did after landing", "units": "1",
-                               "flag_values": np.array(codes, dtype=np.int8),
-                               "flag_meanings": " ".join(CLASSES[c][0] for c in codes)})
 
 
 def _stretch_e_x(ax, ds, x, y):
@@ -148,8 +87,8 @@ def figure_landing(ds, x=None, y=None):
     Returns
     -------
     matplotlib.figure.Figure
-        Classes of :func:`landing_classes` as colours; our Fig. 5 panels marked on an
-        (e_x, e_y) map, Fig. 5's landing velocity on an (x_dot, y_dot) map.
+        Classes of ``sweep.paper.landing.landing_classes`` as colours; our Fig. 5 panels
+        marked on an (e_x, e_y) map, Fig. 5's landing velocity on an (x_dot, y_dot) map.
     """
     dims = list(ds["outcome"].dims)
     if x is None or y is None:
@@ -168,8 +107,8 @@ def figure_landing(ds, x=None, y=None):
     rows = math.ceil(len(combos) / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(4.4 * cols + 1.0, 3.6 * rows + 0.8),
                              squeeze=False, layout="constrained")
-    codes = sorted(CLASSES)
-    cmap = ListedColormap([CLASSES[c][2] for c in codes])
+    codes = sorted(LEGEND)
+    cmap = ListedColormap([LEGEND[c][1] for c in codes])
     norm = BoundaryNorm(np.arange(codes[0] - 0.5, codes[-1] + 1.0), cmap.N)
     for ax, combo in zip(axes.flat, combos):
         sel = dict(zip(others, combo))
@@ -186,7 +125,7 @@ def figure_landing(ds, x=None, y=None):
     for ax in axes.flat[len(combos):]:
         ax.set_visible(False)
     present = set(np.unique(classes.values).tolist())
-    handles = [Patch(facecolor=CLASSES[c][2], edgecolor="0.6", label=CLASSES[c][1])
+    handles = [Patch(facecolor=LEGEND[c][1], edgecolor="0.6", label=LEGEND[c][0])
                for c in codes if c in present or c != FAILED]
     fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8,
                frameon=False)

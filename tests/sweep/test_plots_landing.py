@@ -1,7 +1,7 @@
-"""The landing figure (``sweep.plots.landing``): the class of every cell of a small landing
-study (Fig. 5's body with the face_friction landing, docs/landing.md), the same when the body
-moves left (mirror, PHYSICS A1), the figure with our panels marked, and the panels it marks
-agreeing with the scene files."""
+"""The landing figure: the class of every cell of a small landing study (``sweep.paper.landing``;
+Fig. 5's body with the face_friction landing, docs/landing.md), the same when the body moves
+left (mirror, PHYSICS A1), the figure (``sweep.plots.landing``) with our panels marked, and the
+panels it marks agreeing with the scene files."""
 from pathlib import Path
 
 import matplotlib
@@ -10,8 +10,9 @@ import pytest
 import yaml
 
 import sweep
-from sweep.plots.landing import (OVERTURNS_BACK, OVERTURNS_FORWARD, PAPER_PANELS, SLIDES,
-                                 TILTS_BACK, TILTS_FORWARD, figure_landing, landing_classes)
+from sweep.paper.landing import (OVERTURNS_BACK, OVERTURNS_FORWARD, SLIDES, TILTS_BACK,
+                                 TILTS_FORWARD, landing_classes)
+from sweep.plots.landing import PAPER_PANELS, figure_landing
 
 matplotlib.use("Agg")
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
