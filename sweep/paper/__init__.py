@@ -1,2 +1,3 @@
 """Ishiyama (1982): the closed-form criteria, the estimate of peak ground motion from
-overturned bodies, and the classification of the rocking before an overturning."""
+overturned bodies, the classification of the rocking before an overturning, and of what a body
+does after landing from a translation jump."""

@@ -2,8 +2,8 @@
 
 :func:`main` parses the arguments, takes the communicator (``runner.mpi``) and hands over to
 ``runner.launch``, which plans, deals, computes and merges.  It is here, in the runner, so that
-the site estimate (``sweep.probability.site``) can run a study file in its own process exactly
-as the command does, without importing a command from a layer above it.
+the site estimate (``sweep.probability.site_studies``) can run a study file in its own process
+exactly as the command does, without importing a command from a layer above it.
 """
 import math
 import sys
