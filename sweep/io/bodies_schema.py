@@ -36,7 +36,7 @@ label of the direction of fall.
     ``mu`` for the bodies that give none (default :data:`DEFAULT_MU`), ``e_x``, ``e_y`` for
     all (default those of ``kernels.api.DEFAULTS``).
 ``t_end``
-    Simulated time; by default from the motions (``sweep.probability.site``).
+    Simulated time; by default from the motions (``sweep.probability.site_studies``).
 ``probabilities``
     The probability levels of the bounds, each in (0, 1); default :data:`DEFAULT_PROBABILITIES`.
 
