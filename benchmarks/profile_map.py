@@ -7,7 +7,8 @@
 
 ``time`` runs every N-th cell of ``sweep_map.yaml`` with the kernel of this tree and, with
 ``--base``, with a copy of an earlier ``kernels`` package (DIR holds ``kernels_base/``, the
-package copied under that name), alternating the two cell by cell in this process, so that
+package copied under that name; it must take the scene records of this tree's
+``codes.SCENE_DTYPE``), alternating the two cell by cell in this process, so that
 the load of a shared machine falls on both alike: CPU per cell (``time.process_time``), the
 median of the per-cell ratios, mean ms per cell, the fit cpu ~ a steps + b events and whether
 the results are identical.  ``counts`` (plain Python) counts what a cell does inside its
@@ -55,7 +56,7 @@ def time_cells(every, base, repeat):
         _run(pkg, rows[:1], rec)
     n = rows.shape[0]
     cpu = np.full((len(kernels), repeat, n), np.inf)
-    res = np.empty((len(kernels), n, codes.N_RES))
+    res = np.zeros((len(kernels), n), codes.RESULT_DTYPE)
     for r in range(repeat):
         for k in range(n):
             order = range(len(kernels)) if (k + r) % 2 == 0 else reversed(range(len(kernels)))
@@ -64,27 +65,27 @@ def time_cells(every, base, repeat):
                 res[j, k] = _run(kernels[j][1], rows[k:k + 1], rec)[0]
                 cpu[j, r, k] = time.process_time() - t0
     cpu = np.median(cpu, axis=1)
-    steps, events, impacts = (res[0, :, i] for i in (codes.R_STEPS, codes.R_EVENTS,
-                                                       codes.R_IMPACTS))
+    steps, events, impacts = (res[0][name] for name in ("steps", "events", "impacts"))
     print(f"{n} cells (every {every}-th), median of {repeat} runs per cell")
     for j, (name, _) in enumerate(kernels):
         print(f"  {name:10s} mean {1e3 * cpu[j].mean():7.3f} ms/cell, "
               f"median {1e3 * np.median(cpu[j]):7.3f} ms")
     print(f"  per cell: steps {steps.mean():8.0f}  events {events.mean():7.0f}  "
           f"impacts {impacts.mean():7.0f}  overturned "
-          f"{int(np.sum(res[0, :, codes.R_STATUS] == codes.OVERTURNED))}")
+          f"{int(np.sum(res[0]['status'] == codes.OVERTURNED))}")
     a, b = np.linalg.lstsq(np.c_[steps, events], cpu[0], rcond=None)[0]
     print(f"  fit: {1e6 * a:.2f} us/step, {1e6 * b:.2f} us/event -> steps "
           f"{a * steps.sum() / cpu[0].sum():.0%}, events {b * events.sum() / cpu[0].sum():.0%}")
     if base:
         ratio = cpu[1] / cpu[0]
-        same = np.array_equal(res[0], res[1], equal_nan=True)
+        same = res[0].tobytes() == res[1].tobytes()
         print(f"  base / this tree: median per-cell ratio {np.median(ratio):.3f}, "
               f"ratio of means {cpu[1].mean() / cpu[0].mean():.3f}; results identical: {same}")
         if not same:
-            for name, i in (("overturned", codes.R_STATUS), ("impacts", codes.R_IMPACTS)):
-                print(f"    {name}: this tree {res[0, :, i].sum() if name == 'impacts' else int(np.sum(res[0, :, i] == codes.OVERTURNED))}"
-                      f", base {res[1, :, i].sum() if name == 'impacts' else int(np.sum(res[1, :, i] == codes.OVERTURNED))}")
+            overturned = [int(np.sum(r["status"] == codes.OVERTURNED)) for r in res]
+            impacts = [int(r["impacts"].sum()) for r in res]
+            print(f"    overturned: this tree {overturned[0]}, base {overturned[1]}")
+            print(f"    impacts: this tree {impacts[0]}, base {impacts[1]}")
 
 
 class Counter(dict):
@@ -118,9 +119,9 @@ def count_cells(every):
     res = api.run_cells(rows, rec)
     n = rows.shape[0]
     print(f"{n} cells (every {every}-th); per cell:")
-    for name, i in (("steps (taken + rejected + re-steps)", codes.R_STEPS),
-                    ("events", codes.R_EVENTS), ("impacts", codes.R_IMPACTS)):
-        print(f"  {name:40s} {res[:, i].sum() / n:10.1f}")
+    for name, field in (("steps (taken + rejected + re-steps)", "steps"),
+                        ("events", "events"), ("impacts", "impacts")):
+        print(f"  {name:40s} {res[field].sum() / n:10.1f}")
     for key in sorted(c):
         print(f"  calls {key:34s} {c[key] / n:10.1f}")
 

@@ -9,7 +9,6 @@ from collections import Counter
 
 import numpy as np
 
-from kernels import codes
 from kernels.api import run_scene
 
 from tests import hard_cases as hc
@@ -149,8 +148,8 @@ def ensemble_table(quick):
             continue
         stats = hc.compare_fractions(hc.overturned(run), hc.overturned(reference))
         both = hc.overturned(run) & hc.overturned(reference)
-        shifted = int(np.sum(np.abs(run[both, codes.R_T_OVERTURN]
-                                    - reference[both, codes.R_T_OVERTURN]) > 1e-3))
+        shifted = int(np.sum(np.abs(run["t_overturn"][both]
+                                    - reference["t_overturn"][both]) > 1e-3))
         rows.append([name, f"{k}/{n} = {k / n:.3f} [{low:.3f}, {high:.3f}]",
                      f"{stats.only_a} / {stats.only_b}",
                      f"{stats.difference:+.3f} ± {stats.half_width:.3f}",

@@ -58,74 +58,118 @@ def _merged(scene, section):
     return out
 
 
+class PackingError(ValueError):
+    """A value of a resolved scene that the kernel cannot take: ``path`` is its dotted path
+    (``"excitation.horizontal.frequency"``), ``reason`` what is wrong with it; the message
+    is the two together, the path in backticks."""
+
+    def __init__(self, path, reason):
+        super().__init__(f"`{path}` {reason}")
+        self.path = path
+        self.reason = reason
+
+
 def _number(value, path, positive=False, finite=True):
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"`{path}` must be a number, got {value!r}") from None
+        raise PackingError(path, f"must be a number, got {value!r}") from None
     if (finite and not np.isfinite(x)) or (positive and not x > 0.0):
-        raise ValueError(f"`{path}` must be a {'positive ' if positive else ''}finite "
-                         f"number, got {value!r}")
+        raise PackingError(path, f"must be a {'positive ' if positive else ''}finite "
+                                 f"number, got {value!r}")
     return x
 
 
-def _ground_row(spec, path, records):
-    """Pack one ground component into G_SIZE floats; append record samples to records."""
-    row = np.zeros(codes.G_SIZE)
+def place_record(samples, records):
+    """Offset of ``samples`` in the shared buffer ``record_buffer(records)``.
+
+    ``records`` is the list of sample arrays of a chunk of scene rows; ``samples`` is
+    appended to it unless the same array is there already, so that a record used by many
+    rows is stored once."""
+    offset = 0
+    for stored in records:
+        if stored is samples:
+            return offset
+        offset += stored.size
+    records.append(samples)
+    return offset
+
+
+def _pack_ground(g, spec, path, records):
+    """Pack one ground component into the record ``g`` (of ``codes.GROUND_DTYPE``, zeroed);
+    place record samples in ``records`` (``place_record``)."""
     spec = {**DEFAULTS["ground"], **(spec or {"kind": "none"})}
     kind = spec.get("kind", "none")
     if kind == "pulse":
         shape = spec.get("shape", "rectangular")
         if shape not in _SHAPES:
-            raise ValueError(f"`{path}.shape` must be one of {sorted(_SHAPES)}, got {shape!r}")
-        row[codes.G_KIND] = _SHAPES[shape]
+            raise PackingError(f"{path}.shape", f"must be one of {sorted(_SHAPES)}, "
+                                                f"got {shape!r}")
+        g.kind = _SHAPES[shape]
     elif kind in _KINDS:
-        row[codes.G_KIND] = _KINDS[kind]
+        g.kind = _KINDS[kind]
     else:
-        raise ValueError(f"`{path}.kind` must be one of "
-                         f"{sorted([*_KINDS, 'pulse'])}, got {kind!r}")
+        raise PackingError(f"{path}.kind", f"must be one of {sorted([*_KINDS, 'pulse'])}, "
+                                           f"got {kind!r}")
     if kind == "none":
-        return row
+        return
     duration = spec.get("duration")
-    row[codes.G_START] = _number(spec.get("start", 0.0), f"{path}.start")
-    row[codes.G_DUR] = math.inf if duration is None else _number(duration, f"{path}.duration",
-                                                                 positive=True)
-    row[codes.G_PHASE] = _number(spec.get("phase", 0.0), f"{path}.phase")
+    g.start = _number(spec.get("start", 0.0), f"{path}.start")
+    g.dur = math.inf if duration is None else _number(duration, f"{path}.duration",
+                                                      positive=True)
+    g.phase = _number(spec.get("phase", 0.0), f"{path}.phase")
     if kind == "sine":
-        row[codes.G_AMP] = _number(spec["amplitude"], f"{path}.amplitude")
-        row[codes.G_FREQ] = _number(spec["frequency"], f"{path}.frequency", positive=True)
+        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
+        g.freq = _number(spec["frequency"], f"{path}.frequency", positive=True)
     elif kind == "sweep":
-        row[codes.G_AMP] = _number(spec["amplitude"], f"{path}.amplitude")
-        row[codes.G_F0] = _number(spec["f_start"], f"{path}.f_start", positive=True)
-        row[codes.G_F1] = _number(spec["f_stop"], f"{path}.f_stop", positive=True)
+        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
+        g.f0 = _number(spec["f_start"], f"{path}.f_start", positive=True)
+        g.f1 = _number(spec["f_stop"], f"{path}.f_stop", positive=True)
         if duration is None:
-            raise ValueError(f"`{path}.duration` is required for a sweep")
-        row[codes.G_LAW] = _LAWS[spec.get("law", "log")]
-        f0, f1, T = row[codes.G_F0], row[codes.G_F1], row[codes.G_DUR]
-        row[codes.G_FREQ] = (math.log(f1 / f0) if row[codes.G_LAW] == codes.LAW_LOG
-                             else f1 - f0) / T
-        row[codes.G_HOLD] = _HOLDS[spec.get("hold", "acceleration")]
+            raise PackingError(f"{path}.duration", "is required for a sweep")
+        g.law = _LAWS[spec.get("law", "log")]
+        f0, f1, T = g.f0, g.f1, g.dur
+        g.freq = (math.log(f1 / f0) if g.law == codes.LAW_LOG else f1 - f0) / T
+        g.hold = _HOLDS[spec.get("hold", "acceleration")]
     elif kind == "record":
-        samples = np.ascontiguousarray(spec["samples"], dtype=np.float64).ravel()
+        samples = np.ascontiguousarray(spec["samples"], dtype=np.float64)
+        if samples.ndim != 1:
+            samples = samples.ravel()
         if samples.size < 2 or not np.all(np.isfinite(samples)):
-            raise ValueError(f"`{path}.samples` must hold at least two finite values")
-        row[codes.G_AMP] = _number(spec.get("scale", 1.0), f"{path}.scale")
-        row[codes.G_REC_DT] = _number(spec["dt"], f"{path}.dt", positive=True)
-        row[codes.G_REC_OFF] = sum(r.size for r in records)
-        row[codes.G_REC_N] = samples.size
-        records.append(samples)
+            raise PackingError(f"{path}.samples", "must hold at least two finite values")
+        g.amp = _number(spec.get("scale", 1.0), f"{path}.scale")
+        g.rec_dt = _number(spec["dt"], f"{path}.dt", positive=True)
+        g.rec_off = place_record(samples, records)
+        g.rec_n = samples.size
     else:  # pulse
-        row[codes.G_AMP] = _number(spec["amplitude"], f"{path}.amplitude")
+        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
         if duration is None:
-            raise ValueError(f"`{path}.duration` is required for a pulse")
-    return row
+            raise PackingError(f"{path}.duration", "is required for a pulse")
+
+
+_INITIAL = (("theta", "theta"), ("omega", "omega"), ("x_dot", "u"), ("y_dot", "v"),
+            ("lift", "lift"))                       # resolved key, field of ``initial``
+_SOLVER = (("rtol", "rtol"), ("atol", "atol"), ("dt", "dt"), ("max_step", "max_step"),
+           ("t_end", "t_end"), ("max_steps", "max_steps"), ("max_events", "max_events"),
+           ("theta_overturn", "theta_over"), ("zeno_dt", "zeno_dt"), ("dt_out", "dt_out"))
+
+
+def scene_rows(n):
+    """n zeroed scene records (``codes.SCENE_DTYPE``), read and written by field name."""
+    return np.zeros(n, codes.SCENE_DTYPE).view(np.recarray)
 
 
 def scene_row(scene, records=None):
-    """Pack a resolved scene into a parameter row (shape (N_PAR,)).
+    """Pack a resolved scene into a record of ``codes.SCENE_DTYPE``.
 
-    ``records`` is a list that record samples are appended to; their concatenation is the
-    buffer the row's offsets point into (see ``record_buffer``).
+    ``records`` is the list of record sample arrays shared by the rows of a chunk: the
+    scene's records are placed in it (``place_record``: an array already there is not
+    stored again) and the row's ``rec_off`` point into ``record_buffer(records)``.
+
+    Raises
+    ------
+    PackingError
+        A value the kernel cannot take, with its dotted path.
     """
     records = [] if records is None else records
     body = _merged(scene, "body")
@@ -133,52 +177,51 @@ def scene_row(scene, records=None):
     initial = _merged(scene, "initial")
     solver = _merged(scene, "solver")
     excitation = scene.get("excitation") or {}
-    row = np.zeros(codes.N_PAR)
+    row = scene_rows(1)[0]
     B = _number(body.get("B"), "body.B", positive=True)
     H = _number(body.get("H"), "body.H", positive=True)
     b, h = B / 2, H / 2
     i_g = body.get("i_g")
-    row[codes.P_B], row[codes.P_H] = B, H
-    row[codes.P_I2] = (b * b + h * h) / 3 if i_g is None else \
+    row.body.B, row.body.H = B, H
+    row.body.i2 = (b * b + h * h) / 3 if i_g is None else \
         _number(i_g, "body.i_g", positive=True) ** 2
-    for key, index in (("mu_s", codes.P_MU_S), ("mu_k", codes.P_MU_K),
-                       ("mu_edge_s", codes.P_MU_EDGE_S), ("mu_edge_k", codes.P_MU_EDGE_K)):
-        row[index] = _number(contact[key], f"contact.{key}")
-        if row[index] < 0:
-            raise ValueError(f"`contact.{key}` must be >= 0, got {contact[key]!r}")
-    row[codes.P_E_X] = _number(contact["e_x"], "contact.e_x")
-    row[codes.P_E_Y] = _number(contact["e_y"], "contact.e_y")
-    if not -1 <= row[codes.P_E_X] <= 1 or not 0 <= row[codes.P_E_Y] <= 1:
-        raise ValueError("`contact.e_x` must lie in [-1, 1] and `contact.e_y` in [0, 1]")
+    c = row.contact
+    for key in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k"):
+        value = _number(contact[key], f"contact.{key}")
+        if value < 0:
+            raise PackingError(f"contact.{key}", f"must be >= 0, got {contact[key]!r}")
+        setattr(c, key, value)
+    c.e_x = _number(contact["e_x"], "contact.e_x")
+    c.e_y = _number(contact["e_y"], "contact.e_y")
+    if not -1 <= c.e_x <= 1 or not 0 <= c.e_y <= 1:
+        raise PackingError("contact.e_x", "must lie in [-1, 1] and `contact.e_y` in [0, 1]")
     if contact["landing"] not in codes.LANDING_NAMES:
-        raise ValueError(f"`contact.landing` must be one of {codes.LANDING_NAMES}, "
-                         f"got {contact['landing']!r}")
-    row[codes.P_LANDING] = codes.LANDING_NAMES.index(contact["landing"])
-    for key, index in (("theta", codes.P_THETA0), ("omega", codes.P_OMEGA0),
-                       ("x_dot", codes.P_U0), ("y_dot", codes.P_V0), ("lift", codes.P_LIFT0)):
-        row[index] = _number(initial[key], f"initial.{key}")
+        raise PackingError("contact.landing", f"must be one of {codes.LANDING_NAMES}, "
+                                              f"got {contact['landing']!r}")
+    c.landing = codes.LANDING_NAMES.index(contact["landing"])
+    for key, field in _INITIAL:
+        setattr(row.initial, field, _number(initial[key], f"initial.{key}"))
     method = solver["method"]
     if method not in codes.METHOD_NAMES:
-        raise ValueError(f"`solver.method` must be one of {codes.METHOD_NAMES}, got {method!r}")
-    row[codes.P_METHOD] = codes.METHOD_NAMES.index(method)
-    for key, index in (("rtol", codes.P_RTOL), ("atol", codes.P_ATOL), ("dt", codes.P_DT),
-                       ("max_step", codes.P_MAX_STEP), ("t_end", codes.P_T_END),
-                       ("max_steps", codes.P_MAX_STEPS), ("max_events", codes.P_MAX_EVENTS),
-                       ("theta_overturn", codes.P_THETA_OVER), ("zeno_dt", codes.P_ZENO_DT),
-                       ("dt_out", codes.P_DT_OUT)):
-        row[index] = _number(solver[key], f"solver.{key}", positive=True)
-    row[codes.P_GX:codes.P_GX + codes.G_SIZE] = _ground_row(
-        excitation.get("horizontal"), "excitation.horizontal", records)
-    row[codes.P_GY:codes.P_GY + codes.G_SIZE] = _ground_row(
-        excitation.get("vertical"), "excitation.vertical", records)
+        raise PackingError("solver.method", f"must be one of {codes.METHOD_NAMES}, "
+                                            f"got {method!r}")
+    row.solver.method = codes.METHOD_NAMES.index(method)
+    for key, field in _SOLVER:
+        setattr(row.solver, field, _number(solver[key], f"solver.{key}", positive=True))
+    _pack_ground(row.floor.x, excitation.get("horizontal"), "excitation.horizontal", records)
+    _pack_ground(row.floor.y, excitation.get("vertical"), "excitation.vertical", records)
     return row
 
 
 def as_records(rows):
-    """Scene rows (shape (n, N_PAR) or (N_PAR,)) viewed, without a copy, as n records of
-    ``codes.SCENE_DTYPE``: the compiled code reads them by name (``row.body.B``)."""
-    rows = np.ascontiguousarray(rows, dtype=np.float64).reshape(-1, codes.N_PAR)
-    return rows.view(codes.SCENE_DTYPE).view(np.recarray)[:, 0]
+    """Scene rows (records of ``codes.SCENE_DTYPE``, any number of them, or one) as a
+    C-contiguous one-dimensional recarray: compiled code and plain Python read them by
+    name (``row.body.B``).  A ValueError names ``rows`` when they are not such records."""
+    rows = np.asarray(rows)
+    if rows.dtype.names != codes.SCENE_DTYPE.names:
+        raise ValueError(f"`rows` must be records of codes.SCENE_DTYPE, got dtype {rows.dtype}")
+    rows = np.ascontiguousarray(rows.reshape(-1).astype(codes.SCENE_DTYPE, copy=False))
+    return rows.view(np.recarray)
 
 
 def record_buffer(records):
@@ -251,68 +294,66 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     records = []
     row = scene_row(scene, records)
     rec = record_buffer(records)
-    res = np.zeros(codes.N_RES)
+    res = np.zeros(1, codes.RESULT_DTYPE).view(np.recarray)[0]
     log = np.empty((max_log, codes.N_LOG))  # rows [:n_log] are written
-    n_hist = int(row[codes.P_T_END] / row[codes.P_DT_OUT]) + 2 if history else 0
+    n_hist = int(row.solver.t_end / row.solver.dt_out) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
-    args = (as_records(row)[0], rec, res, log, hist, control(cell=0))
+    args = (row, rec, res, log, hist, control(cell=0))
     run = _compiled(_run_scene, args)
     t0 = time.process_time()
     n_log, n_h = run(*args)
     cpu = time.process_time() - t0
-    status = int(res[codes.R_STATUS])
+    status = int(res.status)
     overturned = status == codes.OVERTURNED
-    impacts, clamps = int(res[codes.R_IMPACTS]), int(res[codes.R_ENERGY_CLAMPS])
+    impacts, clamps = int(res.impacts), int(res.energy_clamps)
     return SceneResult(
         status=codes.STATUS_NAMES[status], message=_message(status, impacts, n_log, clamps),
-        overturned=overturned, t_overturn=_nan_to_none(res[codes.R_T_OVERTURN]),
-        overturn_direction=int(res[codes.R_DIRECTION]) if overturned else None,
+        overturned=overturned, t_overturn=_nan_to_none(res.t_overturn),
+        overturn_direction=int(res.direction) if overturned else None,
         impact_times=log[:n_log, codes.LOG_T].tolist(),
         omega_after=log[:n_log, codes.LOG_OMEGA].tolist(),
         impact_slipped=[bool(int(f) & codes.SLIPPED) for f in log[:n_log, codes.LOG_FLAGS]],
         impact_count=impacts, impact_log_truncated=n_log < impacts,
-        max_abs_theta=float(res[codes.R_MAX_ABS_THETA]),
-        t_rest=_nan_to_none(res[codes.R_T_REST]),
-        mode_time={name: float(res[codes.R_MODE_TIME + m])
-                   for m, name in enumerate(codes.MODE_NAMES)},
-        max_slip=float(res[codes.R_MAX_SLIP]), max_travel=float(res[codes.R_MAX_TRAVEL]),
-        max_lift=float(res[codes.R_MAX_LIFT]),
-        steps=int(res[codes.R_STEPS]), events=int(res[codes.R_EVENTS]),
-        energy_clamps=clamps, t_final=float(res[codes.R_T_END]),
-        f_at_overturn=_nan_to_none(res[codes.R_F_AT_OVERTURN]),
-        a_at_overturn=_nan_to_none(res[codes.R_A_AT_OVERTURN]),
-        v_at_overturn=_nan_to_none(res[codes.R_V_AT_OVERTURN]),
+        max_abs_theta=float(res.max_abs_theta),
+        t_rest=_nan_to_none(res.t_rest),
+        mode_time={name: float(res.mode_time[m]) for m, name in enumerate(codes.MODE_NAMES)},
+        max_slip=float(res.max_slip), max_travel=float(res.max_travel),
+        max_lift=float(res.max_lift),
+        steps=int(res.steps), events=int(res.events),
+        energy_clamps=clamps, t_final=float(res.t_end),
+        f_at_overturn=_nan_to_none(res.f_at_overturn),
+        a_at_overturn=_nan_to_none(res.a_at_overturn),
+        v_at_overturn=_nan_to_none(res.v_at_overturn),
         cpu_s=cpu,
         history={name: hist[:n_h, j].copy() for j, name in enumerate(codes.HISTORY_NAMES)}
         if history else None)
 
 
 def run_cells(rows, rec, budget=None):
-    """Run a chunk of scene rows (shape (n, N_PAR)) in one compiled call: (n, N_RES).
+    """Run a chunk of scene rows (n records of ``codes.SCENE_DTYPE``) in one compiled call.
 
-    ``budget``: seconds of wall time a cell may run before a watchdog thread stops it with
-    status ``TIME_BUDGET`` (the next cell then starts); None or 0: no limit.
+    Returns an array of n records of ``codes.RESULT_DTYPE``.  ``budget``: seconds of wall
+    time a cell may run before a watchdog thread stops it with status ``TIME_BUDGET`` (the
+    next cell then starts); None or 0: no limit.
     """
     from .driver import run_cells as _run_cells
-    rows = np.ascontiguousarray(rows, dtype=np.float64)
-    if rows.ndim != 2 or rows.shape[1] != codes.N_PAR:
-        raise ValueError(f"`rows` must have shape (n, {codes.N_PAR}), got {rows.shape}")
+    rows = as_records(rows)
     if budget is not None and not budget >= 0:
         raise ValueError(f"`budget` must be None or >= 0 seconds, got {budget!r}")
     rec = np.ascontiguousarray(rec, dtype=np.float64)
-    results = np.zeros((rows.shape[0], codes.N_RES))
+    results = np.zeros(rows.shape[0], codes.RESULT_DTYPE)
     ctl = control()
     with Watchdog(ctl, budget):
-        _run_cells(as_records(rows), rec, results, ctl)
+        _run_cells(rows, rec, results.view(np.recarray), ctl)
     return results
 
 
 def not_run(n, status=codes.INVALID_SCENE):
-    """Result rows (n, N_RES) of scenes that never ran: ``status``, no impacts, steps or
-    events, no overturning direction, NaN for every other result."""
-    results = np.full((n, codes.N_RES), np.nan)
-    results[:, codes.R_STATUS] = status
-    for index in (codes.R_DIRECTION, codes.R_IMPACTS, codes.R_STEPS, codes.R_EVENTS,
-                  codes.R_ENERGY_CLAMPS):
-        results[:, index] = 0.0
+    """Results (n records of ``codes.RESULT_DTYPE``) of scenes that never ran: ``status``,
+    no impacts, steps or events, no overturning direction, NaN for every other result."""
+    results = np.zeros(n, codes.RESULT_DTYPE)
+    for name in codes.RESULT_DTYPE.names:
+        if codes.RESULT_DTYPE[name].base.kind == "f":
+            results[name] = np.nan
+    results["status"] = status
     return results

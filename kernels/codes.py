@@ -1,9 +1,9 @@
 """Integer codes shared by the kernel and its users, and standard gravity.
 
-Modes (the paper's six motion types), end statuses, ground-motion kinds, the layout of the
-flat float64 parameter row that describes one scene to the compiled code and the same row
-as a named record (``SCENE_DTYPE``), the indices of the state vector, and the columns of
-the impact log and the history.  The name tuples feed
+Modes (the paper's six motion types), end statuses, ground-motion kinds, the record that
+describes one scene to the compiled code (``SCENE_DTYPE``) and the record it fills with the
+scene's results (``RESULT_DTYPE``), the indices of the state vector, and the columns of the
+impact log and the history.  The name tuples feed
 error messages and the CF ``flag_meanings`` of the output datasets.  ``G`` is defined here,
 once for the kernel (``ground``) and ``sweep`` (``sweep.bodies``): this module imports numpy
 alone, so ``sweep``'s input checks read it without loading numba.
@@ -60,17 +60,6 @@ G_NONE, G_SINE, G_SWEEP, G_RECORD, G_PULSE_RECT, G_PULSE_TRI = range(6)
 LAW_LOG, LAW_LINEAR = 0, 1
 HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
 
-# Ground component parameters (12 floats per component).  SI units.
-#   G_AMP: sine/pulse: acceleration amplitude [m/s^2]; sweep: the held amplitude
-#          (m/s^2, m/s or m after G_HOLD); record: scale factor on the samples [-]
-#   G_FREQ: sine frequency [Hz]; sweep: its rate, d(ln f)/dt [1/s] (log law) or df/dt
-#          [Hz/s] (linear law); G_F0/G_F1: sweep start/stop frequency [Hz]
-#   G_START, G_DUR: the window [s] (G_DUR = inf: no end; sweep: the sweep length)
-#   G_REC_OFF, G_REC_N, G_REC_DT: slice of the shared record buffer and its sample step
-(G_KIND, G_AMP, G_FREQ, G_PHASE, G_START, G_DUR, G_F0, G_F1, G_LAW, G_HOLD,
- G_REC_OFF, G_REC_N, G_REC_DT) = range(13)
-G_SIZE = 13
-
 # --- landing laws after a translation jump (scene key ``contact.landing``) -----------------
 # flat: the two-contact impulse (PHYSICS 2.3); face_friction: one contact at the middle of
 # the base whose friction impulse turns the body; corner: the leading corner strikes first
@@ -78,48 +67,47 @@ G_SIZE = 13
 LANDING_FLAT, LANDING_FACE_FRICTION, LANDING_CORNER = range(3)
 LANDING_NAMES = ("flat", "face_friction", "corner")
 
-# Scene parameter row.  Body [m, m, m^2], contact [-] (P_LANDING: a LANDING_* code), initial
-# state, solver options, then the horizontal ground (P_GX ...) and the vertical ground (P_GY ...).
-(P_B, P_H, P_I2,
- P_MU_S, P_MU_K, P_MU_EDGE_S, P_MU_EDGE_K, P_E_X, P_E_Y, P_LANDING,
- P_THETA0, P_OMEGA0, P_U0, P_V0, P_LIFT0,
- P_METHOD, P_RTOL, P_ATOL, P_DT, P_MAX_STEP, P_T_END, P_MAX_STEPS, P_MAX_EVENTS,
- P_THETA_OVER, P_ZENO_DT, P_DT_OUT) = range(26)
-P_GX = 26
-P_GY = P_GX + G_SIZE
-N_PAR = P_GY + G_SIZE
+# --- the scene record: what compiled code reads of one scene, by name -----------------------
+# ``row.body.B``, ``row.floor.x.amp``, ``row.solver.rtol``: one pointer, float64 fields, SI.
+# A ground component (``floor.x`` horizontal, ``floor.y`` vertical):
+#   kind: a G_* code; amp: sine/pulse: acceleration amplitude [m/s^2]; sweep: the held
+#         amplitude (m/s^2, m/s or m after ``hold``); record: scale factor on the samples [-]
+#   freq: sine frequency [Hz]; sweep: its rate, d(ln f)/dt [1/s] (log law) or df/dt [Hz/s]
+#         (linear law); f0/f1: sweep start/stop frequency [Hz]; law: LAW_*; hold: HOLD_*
+#   start, dur: the window [s] (dur = inf: no end; sweep: the sweep length); phase [rad]
+#   rec_off, rec_n, rec_dt: slice of the shared record buffer and its sample step [s]
+GROUND_DTYPE = np.dtype([(name, "f8") for name in (
+    "kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
+    "rec_off", "rec_n", "rec_dt")])
+# body: breadth, height [m], squared radius of gyration about G [m^2]; contact: friction,
+# restitution and the landing law (a LANDING_* code); initial: theta [rad], omega [rad/s],
+# u, v [m/s] and lift [m]; solver: method (ADAPTIVE/FIXED) and the options of
+# ``kernels.api.DEFAULTS`` (theta_over: the overturning angle [rad]).
+SCENE_DTYPE = np.dtype([
+    ("body", [(name, "f8") for name in ("B", "H", "i2")]),
+    ("contact", [(name, "f8") for name in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x",
+                                           "e_y", "landing")]),
+    ("initial", [(name, "f8") for name in ("theta", "omega", "u", "v", "lift")]),
+    ("solver", [(name, "f8") for name in ("method", "rtol", "atol", "dt", "max_step", "t_end",
+                                          "max_steps", "max_events", "theta_over",
+                                          "zeno_dt", "dt_out")]),
+    ("floor", [("x", GROUND_DTYPE), ("y", GROUND_DTYPE)]),
+])
 
-# The same row as a numpy structured record (``SCENE_DTYPE``): compiled code reads the scene
-# by name (``row.body.B``, ``row.floor.x.amp``, ``row.solver.rtol``) through one pointer.
-# ``kernels.api`` views a float64 row (n, N_PAR) as records without copying.
-GROUND_FIELDS = ("kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
-                 "rec_off", "rec_n", "rec_dt")                       # G_KIND ... G_REC_DT
-SCENE_FIELDS = (("body", ("B", "H", "i2")),
-                ("contact", ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
-                             "landing")),
-                ("initial", ("theta", "omega", "u", "v", "lift")),
-                ("solver", ("method", "rtol", "atol", "dt", "max_step", "t_end", "max_steps",
-                            "max_events", "theta_over", "zeno_dt", "dt_out")),
-                ("floor", ("x", "y")))                               # P_B ... P_GY + G_DT
-
-
-def _record(names, formats):
-    return [(name, fmt) for name, fmt in zip(names, formats)]
-
-
-GROUND_DTYPE = np.dtype(_record(GROUND_FIELDS, ["f8"] * G_SIZE))
-SCENE_DTYPE = np.dtype([(group, _record(names, [GROUND_DTYPE if group == "floor" else "f8"]
-                                        * len(names))) for group, names in SCENE_FIELDS])
-assert SCENE_DTYPE.itemsize == 8 * N_PAR
-
-
-# Per-cell scalar results (float64 row).  R_MAX_SLIP: how far the base moved along the floor
-# (``extremes.footprint``); R_MAX_TRAVEL: the largest |x - x0| of G, rotation included.
-(R_STATUS, R_T_END, R_T_OVERTURN, R_DIRECTION, R_MAX_ABS_THETA, R_IMPACTS, R_T_REST,
- R_MAX_SLIP, R_MAX_LIFT, R_STEPS, R_EVENTS, R_ENERGY_CLAMPS,
- R_F_AT_OVERTURN, R_A_AT_OVERTURN, R_V_AT_OVERTURN, R_MAX_TRAVEL) = range(16)
-R_MODE_TIME = 16                      # six entries, seconds in each mode
-N_RES = R_MODE_TIME + N_MODES
+# --- the result record of one scene (``driver._report`` fills it) ---------------------------
+# status: a status code; t_end: the time reached [s]; t_overturn, t_rest: NaN when it did not
+# overturn or come to final rest; direction: sign of theta at overturning (0: none);
+# max_slip: how far the base moved along the floor (``extremes.footprint``); max_travel: the
+# largest |x - x0| of G, rotation included; *_at_overturn: the floor's frequency [Hz],
+# acceleration and velocity amplitude (``ground.amplitudes``) at overturning, else NaN;
+# energy_clamps: impacts whose restitution was clamped; mode_time: seconds in each mode.
+RESULT_DTYPE = np.dtype([
+    ("status", "i8"), ("t_end", "f8"), ("t_overturn", "f8"), ("direction", "i8"),
+    ("max_abs_theta", "f8"), ("impacts", "i8"), ("t_rest", "f8"), ("max_slip", "f8"),
+    ("max_lift", "f8"), ("steps", "i8"), ("events", "i8"), ("energy_clamps", "i8"),
+    ("f_at_overturn", "f8"), ("a_at_overturn", "f8"), ("v_at_overturn", "f8"),
+    ("max_travel", "f8"), ("mode_time", "f8", (N_MODES,)),
+])
 
 # Impact flag bits (what an impact law did)
 SLIPPED = 1              # the impulse left the friction cone: the contact slipped
@@ -130,7 +118,7 @@ IMPACT_PAINLEVE = 4      # the impact problem has no solution (Painleve case)
 LOG_T, LOG_OMEGA, LOG_FLAGS = range(3)
 N_LOG = 3
 
-# History columns (when asked for): sampled every P_DT_OUT seconds.
+# History columns (when asked for): sampled every ``solver.dt_out`` seconds.
 (H_T, H_X, H_Y, H_THETA, H_U, H_V, H_OMEGA, H_MODE, H_AX, H_AY) = range(10)
 N_HIST = 10
 HISTORY_NAMES = ("t", "x", "y", "theta", "u", "v", "omega", "mode", "a_x", "a_y")

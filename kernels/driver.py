@@ -22,11 +22,7 @@ import numpy as np
 from ._jit import jit
 from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTL_CELL, CTL_STOP, CTX_S,
                     CTX_SIGMA, IOMEGA, ITHETA, LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG,
-                    N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, R_A_AT_OVERTURN,
-                    R_DIRECTION, R_ENERGY_CLAMPS, R_EVENTS, R_F_AT_OVERTURN, R_IMPACTS,
-                    R_MAX_ABS_THETA, R_MAX_LIFT, R_MAX_SLIP, R_MAX_TRAVEL, R_MODE_TIME,
-                    R_STATUS, R_STEPS, R_T_END, R_T_OVERTURN, R_T_REST, R_V_AT_OVERTURN, REST,
-                    TIME_BUDGET)
+                    N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, REST, TIME_BUDGET)
 from .event_search import first_event, polish
 from .events import event_values, n_events
 from .extremes import (BASE_REF, MAX_LIFT, MAX_SLIP, MAX_THETA, MAX_TRAVEL, observe,
@@ -70,25 +66,26 @@ def _finite(z, n):
 
 @jit
 def _report(res, status, t, t_rest, mode, counts, scene, work):
-    """Fill the result row (``codes.R_*``); counts = (impacts, steps, events, clamps)."""
+    """Fill the result record ``res`` (``codes.RESULT_DTYPE``); counts = (impacts, steps,
+    events, clamps)."""
     q = work.q
     overturned = status == OVERTURNED
-    res[R_STATUS] = status
-    res[R_T_END] = t
-    res[R_T_REST] = t_rest if (status == OK and mode == REST) else math.nan
-    res[R_T_OVERTURN] = t if overturned else math.nan
-    res[R_DIRECTION] = math.copysign(1.0, q[ITHETA]) if overturned else 0.0
+    res.status = status
+    res.t_end = t
+    res.t_rest = t_rest if (status == OK and mode == REST) else math.nan
+    res.t_overturn = t if overturned else math.nan
+    res.direction = int(math.copysign(1.0, q[ITHETA])) if overturned else 0
     f, A, V = amplitudes(t, scene.floor.x)
-    res[R_F_AT_OVERTURN] = f if overturned else math.nan
-    res[R_A_AT_OVERTURN] = A if overturned else math.nan
-    res[R_V_AT_OVERTURN] = V if overturned else math.nan
-    res[R_MAX_ABS_THETA] = work.extremes[MAX_THETA]
-    res[R_MAX_SLIP] = work.extremes[MAX_SLIP]
-    res[R_MAX_TRAVEL] = work.extremes[MAX_TRAVEL]
-    res[R_MAX_LIFT] = work.extremes[MAX_LIFT]
-    res[R_IMPACTS], res[R_STEPS], res[R_EVENTS], res[R_ENERGY_CLAMPS] = counts
+    res.f_at_overturn = f if overturned else math.nan
+    res.a_at_overturn = A if overturned else math.nan
+    res.v_at_overturn = V if overturned else math.nan
+    res.max_abs_theta = work.extremes[MAX_THETA]
+    res.max_slip = work.extremes[MAX_SLIP]
+    res.max_travel = work.extremes[MAX_TRAVEL]
+    res.max_lift = work.extremes[MAX_LIFT]
+    res.impacts, res.steps, res.events, res.energy_clamps = counts
     for m in range(N_MODES):
-        res[R_MODE_TIME + m] = work.mode_time[m]
+        res.mode_time[m] = work.mode_time[m]
 
 
 @jit
@@ -98,15 +95,15 @@ def run_scene(row, rec, res, log, hist, ctl):
     Parameters
     ----------
     row : record of ``codes.SCENE_DTYPE``
-        The scene row (a float64 row of ``codes.N_PAR`` viewed as a record), SI units.
+        The scene, read by field name, SI units.
     rec : ndarray, shape (n,)
         Shared buffer of record samples [m/s^2] that the ground rows point into.
-    res : ndarray, shape (N_RES,)
-        Filled with the scalar results (layout ``R_*`` in ``codes``).
+    res : record of ``codes.RESULT_DTYPE``
+        Filled with the scalar results, by field name.
     log : ndarray, shape (m, N_LOG)
         Filled with (t, omega after, impact flags) of the first m impacts (``LOG_*``).
     hist : ndarray, shape (k, N_HIST)
-        Filled with the state every ``P_DT_OUT`` seconds (first k samples).
+        Filled with the state every ``solver.dt_out`` seconds (first k samples).
     ctl : ndarray of int64, shape (N_CTL,)
         The control array (``codes.CTL_*``): the scene ends with status ``TIME_BUDGET`` once
         ``ctl[CTL_STOP]`` equals ``ctl[CTL_CELL]`` as it was at the start.
@@ -283,7 +280,7 @@ def run_scene(row, rec, res, log, hist, ctl):
 @jit
 def run_cells(rows, rec, results, ctl):
     """Run every scene row of ``rows`` (n records of ``codes.SCENE_DTYPE``) into
-    ``results`` (n, N_RES), writing the index of the running cell to ``ctl[CTL_CELL]`` (n
+    ``results`` (n records of ``codes.RESULT_DTYPE``), writing the index of the running cell to ``ctl[CTL_CELL]`` (n
     once done) for a watchdog thread, which may stop it (see ``run_scene``)."""
     log = np.zeros((0, N_LOG))
     hist = np.zeros((0, N_HIST))

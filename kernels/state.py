@@ -1,7 +1,7 @@
 """Named records the compiled code passes around (namedtuples of scalars and arrays).
 
-A scene comes to the compiled code as its parameter row viewed as a record of
-``codes.SCENE_DTYPE`` (fields by name, passed as one pointer).  ``scene_of`` makes the
+A scene comes to the compiled code as one record of ``codes.SCENE_DTYPE`` (fields by name,
+passed as one pointer).  ``scene_of`` makes the
 ``Scene``: the ``Body`` (half sizes and inertia) and the ``Contact`` law (friction and
 restitution, with the surface's kinetic friction as flat sliding sees it) beside the row's
 floor, solver and initial records.  The record samples a floor component may point into

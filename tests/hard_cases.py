@@ -225,14 +225,14 @@ def ensemble_scene(phase, **solver):
 
 
 def phase_ensemble(phases, **solver):
-    """Kernel result rows (n, N_RES) of ``ensemble_scene`` over the phases, one compiled
+    """Kernel results (n records of ``codes.RESULT_DTYPE``) of ``ensemble_scene`` over the phases, one compiled
     call."""
     rows = np.array([api.scene_row(resolved(ensemble_scene(ph, **solver))) for ph in phases])
     return api.run_cells(rows, api.record_buffer([]))
 
 
 def overturned(results):
-    return results[:, codes.R_STATUS] == codes.OVERTURNED
+    return results["status"] == codes.OVERTURNED
 
 
 def wilson(k, n, z=1.96):

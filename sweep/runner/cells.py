@@ -2,9 +2,9 @@
 
 ``run_chunk`` knows nothing of ranks or files (the mpi4py demos' ``mandelbrot_line``): it
 builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
-(``io.scene_schema``), packs it into a parameter row (``kernels.api.scene_row``), runs the
-whole chunk in one ``kernels.api.run_cells`` call and turns the result rows into the per-cell
-arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that cannot be built is
+(``io.scene_schema``), packs it into a scene record (``kernels.api.scene_row``), runs the
+whole chunk in one ``kernels.api.run_cells`` call and turns the result records into the
+per-cell arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that cannot be built is
 flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
 flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
 """
@@ -32,26 +32,15 @@ WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
 CELL_BUDGET = 300.0  # s of wall time one cell may run before it is stopped (run_chunk)
 
 
-def _place(records, buffer, offsets):
-    """Offsets into the shared buffer of a row's record arrays, each array stored once."""
-    found = []
-    for samples in records:
-        key = id(samples)
-        if key not in offsets:
-            offsets[key] = (sum(a.size for a in buffer), samples)  # keep the array alive
-            buffer.append(samples)
-        found.append(offsets[key][0])
-    return found
-
-
 def build_rows(study, cells):
     """Kernel rows, record buffer, bodies and horizontal motions of some cells.
 
     Returns
     -------
-    rows : ndarray, shape (n, N_PAR)
+    rows : ndarray of ``codes.SCENE_DTYPE``, shape (n,)
     rec : ndarray
-        The shared record buffer (a record used by many cells is stored once).
+        The shared record buffer (a record used by many cells is stored once:
+        ``kernels.api.place_record``).
     bodies : ndarray, shape (n, 3)
         B, H [m] and i_g [m] (NaN for a uniform body) of each cell.
     motions : ndarray, shape (n, 4)
@@ -59,14 +48,13 @@ def build_rows(study, cells):
         (``groundmotion.applied.peaks``).
     problems : dict of int to str
         Position in ``cells`` to the problem of each cell whose scene cannot be built
-        (loaded, resolved or packed); its row and body are NaN.
+        (loaded, resolved or packed); its row (every field) and body are NaN.
     """
-    rows = np.empty((len(cells), codes.N_PAR))
+    rows = api.scene_rows(len(cells))
     bodies = np.empty((len(cells), 3))
     motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
-    buffer, offsets, problems = [], {}, {}
+    records, problems = [], {}
     for k, index in enumerate(cells):
-        records = []
         try:
             resolved = resolve_scene(load_scene(grid.cell_scene(study, int(index)),
                                                 base_dir=study.base_dir))
@@ -74,23 +62,19 @@ def build_rows(study, cells):
         except (FileProblems, ValueError) as err:
             rows[k], bodies[k], problems[k] = np.nan, np.nan, str(err)
             continue
-        placed = iter(_place(records, buffer, offsets))
-        for start in (codes.P_GX, codes.P_GY):  # scene_row appends horizontal then vertical
-            if rows[k, start + codes.G_KIND] == codes.G_RECORD:
-                rows[k, start + codes.G_REC_OFF] = next(placed)
         body = resolved["body"]
         bodies[k] = body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"]
         motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
-    return rows, api.record_buffer(buffer), bodies, motions, problems
+    return rows, api.record_buffer(records), bodies, motions, problems
 
 
 def summarize(results, bodies, motions):
-    """Per-cell arrays of ``cf.VARIABLES`` from kernel result rows (n, N_RES), the cells'
-    bodies and motions (``build_rows``)."""
-    status = results[:, codes.R_STATUS].astype(np.int8)
+    """Per-cell arrays of ``cf.VARIABLES`` from kernel results (n records of
+    ``codes.RESULT_DTYPE``), the cells' bodies and motions (``build_rows``)."""
+    status = results["status"].astype(np.int8)
     failed = np.isin(status, codes.FAILED_STATUSES)
     overturned = status == codes.OVERTURNED
-    theta = results[:, codes.R_MAX_ABS_THETA]
+    theta = results["max_abs_theta"]
     outcome = np.where(failed, codes.FAILED,
                        np.where(overturned, codes.OVERTURN,
                                 np.where(theta > 0, codes.ROCKED, codes.NO_ROCKING)))
@@ -105,21 +89,21 @@ def summarize(results, bodies, motions):
         "outcome": outcome,
         "overturned": np.where(failed, -1, overturned),
         "status": status,
-        "t_overturn": results[:, codes.R_T_OVERTURN],
-        "overturn_direction": results[:, codes.R_DIRECTION],
+        "t_overturn": results["t_overturn"],
+        "overturn_direction": results["direction"],
         "max_abs_theta": theta,
-        "impact_count": results[:, codes.R_IMPACTS],
-        "mode_time": results[:, codes.R_MODE_TIME:codes.R_MODE_TIME + codes.N_MODES],
-        "max_slip": results[:, codes.R_MAX_SLIP],
-        "max_travel": results[:, codes.R_MAX_TRAVEL],
-        "max_lift": results[:, codes.R_MAX_LIFT],
-        "t_rest": results[:, codes.R_T_REST],
-        "steps": results[:, codes.R_STEPS],
-        "energy_clamps": results[:, codes.R_ENERGY_CLAMPS],
-        "f_at_overturn": results[:, codes.R_F_AT_OVERTURN],
-        "a_norm_at_overturn": results[:, codes.R_A_AT_OVERTURN] / west_acceleration(B, H),
-        "v_norm_at_overturn": results[:, codes.R_V_AT_OVERTURN] / v_H,
-        "slid": np.where(failed, -1, results[:, codes.R_MAX_SLIP] > cf.SLID_THRESHOLD),
+        "impact_count": results["impacts"],
+        "mode_time": results["mode_time"],
+        "max_slip": results["max_slip"],
+        "max_travel": results["max_travel"],
+        "max_lift": results["max_lift"],
+        "t_rest": results["t_rest"],
+        "steps": results["steps"],
+        "energy_clamps": results["energy_clamps"],
+        "f_at_overturn": results["f_at_overturn"],
+        "a_norm_at_overturn": results["a_at_overturn"] / west_acceleration(B, H),
+        "v_norm_at_overturn": results["v_at_overturn"] / v_H,
+        "slid": np.where(failed, -1, results["max_slip"] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
     }
@@ -155,7 +139,7 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET):
     results[built] = api.run_cells(rows[built], rec, budget=budget)
     for k, problem in problems.items():
         _warn(cells[k], f"its scene cannot be built: {problem}")
-    for k in np.flatnonzero(results[:, codes.R_STATUS] == codes.TIME_BUDGET):
+    for k in np.flatnonzero(results["status"] == codes.TIME_BUDGET):
         _warn(cells[k], f"stopped after the per-cell wall-time budget of {budget:g} s")
     return {"cell": cells, **summarize(results, bodies, motions)}
 
@@ -187,7 +171,7 @@ def kernel_cached():
 def warm_up():
     """Compile (or load from the numba cache) the chunk kernel with a short scene."""
     row = api.scene_row(resolve_scene(load_scene(WARM_UP_SCENE)), [])
-    api.run_cells(row[None, :], api.record_buffer([]))
+    api.run_cells(row, api.record_buffer([]))
     try:
         marker = _marker()
         marker.parent.mkdir(parents=True, exist_ok=True)

@@ -1,11 +1,14 @@
-"""``kernels.api``: what a result says was cut (the impact log) or changed (restitution).
+"""``kernels.api``: what a result says was cut (the impact log) or changed (restitution),
+and how scenes are packed (records by name, records of samples stored once, packing errors
+with their paths).
 
 Counts are checked against the kernel's own impact count and against a plastic scene run
 without clamping; the steady-rocking scene (DESIGN 10: 1.5 west at 4 Hz, 10 s) has 79 impacts.
 """
 import numpy as np
+import pytest
 
-from kernels import codes
+from kernels import api, codes
 from kernels.api import not_run, run_scene
 from scenes import G, scene, sine
 
@@ -42,12 +45,40 @@ def test_default_restitution_is_never_clamped():
     assert r.impact_count > 0 and r.energy_clamps == 0
 
 
-def test_rows_of_scenes_that_never_ran():
-    rows = not_run(2)
-    assert rows.shape == (2, codes.N_RES)
-    assert (rows[:, codes.R_STATUS] == codes.INVALID_SCENE).all()
-    counts = [codes.R_IMPACTS, codes.R_STEPS, codes.R_EVENTS, codes.R_ENERGY_CLAMPS,
-              codes.R_DIRECTION]
-    assert (rows[:, counts] == 0).all()
-    rest = np.setdiff1d(np.arange(codes.N_RES), counts + [codes.R_STATUS])
-    assert np.isnan(rows[:, rest]).all()
+def test_results_of_scenes_that_never_ran():
+    results = not_run(2)
+    assert results.shape == (2,) and results.dtype == codes.RESULT_DTYPE
+    assert (results["status"] == codes.INVALID_SCENE).all()
+    counts = ["impacts", "steps", "events", "energy_clamps", "direction"]
+    for name in counts:
+        assert (results[name] == 0).all(), name
+    for name in set(codes.RESULT_DTYPE.names) - {*counts, "status"}:
+        assert np.isnan(results[name]).all(), name
+
+
+def test_records_are_views():
+    """``as_records`` of C-contiguous scene records shares their memory."""
+    rows = api.scene_rows(3)
+    records = api.as_records(rows)
+    rows["floor"]["y"]["amp"][2] = 4.5
+    assert records[2].floor.y.amp == 4.5 and records.shape == (3,)
+
+
+def test_a_packing_error_names_its_path():
+    with pytest.raises(api.PackingError) as err:
+        api.scene_row(scene(horizontal=sine(0.5 * G, -4.0)))
+    assert err.value.path == "excitation.horizontal.frequency"
+    assert err.value.reason == "must be a positive finite number, got -4.0"
+    assert str(err.value) == f"`{err.value.path}` {err.value.reason}"
+
+
+def test_a_record_of_many_rows_is_stored_once():
+    samples = np.sin(np.arange(100.0))
+    record = {"kind": "record", "samples": samples, "dt": 0.01}
+    records = []
+    rows = np.array([api.scene_row(scene(horizontal=record, vertical=other), records)
+                     for other in (None, {**record, "samples": 2 * samples}, record)])
+    assert len(records) == 2 and records[0] is samples
+    assert rows["floor"]["x"]["rec_off"].tolist() == [0, 0, 0]
+    assert rows["floor"]["y"]["rec_off"].tolist() == [0, 100, 0]
+    assert api.record_buffer(records).size == 200

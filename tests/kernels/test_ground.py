@@ -22,7 +22,7 @@ def floor_of(horizontal=None, vertical=None):
     row = api.scene_row({"body": {"B": 0.1, "H": 0.3},
                          "excitation": {"horizontal": horizontal, "vertical": vertical}},
                         records)
-    return api.as_records(row)[0].floor, api.record_buffer(records)
+    return row.floor, api.record_buffer(records)
 
 
 def a_x(t, floor, rec):

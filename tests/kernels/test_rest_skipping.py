@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from kernels import api, codes, rest_skipping, state
+from kernels import api, rest_skipping, state
 
 G = 9.80665
 TWO_PI = 2.0 * math.pi
@@ -21,11 +21,9 @@ def scene_of(horizontal=None, vertical=None, **contact):
     row = api.scene_row({"body": {"B": 0.1, "H": 0.3}, "contact": contact,
                          "excitation": {"horizontal": horizontal, "vertical": vertical}},
                         records)
-    b, h = 0.5 * row[codes.P_B], 0.5 * row[codes.P_H]
-    record = api.as_records(row)[0]
-    c = record.contact
-    scene = SimpleNamespace(floor=record.floor,
-                            body=state.Body(b, h, row[codes.P_I2]),
+    b, h = 0.5 * row.body.B, 0.5 * row.body.H
+    c = row.contact
+    scene = SimpleNamespace(floor=row.floor, body=state.Body(b, h, row.body.i2),
                             contact=state.Contact(*(float(c[name]) for name in c.dtype.names)))
     return scene, api.record_buffer(records)
 

@@ -12,7 +12,6 @@ import pytest
 
 import hard_cases as hc
 from naive import body_constants, zeno_time
-from kernels import codes
 from kernels.api import run_scene
 
 ETA = body_constants(hc.B, hc.H)[5]
@@ -190,7 +189,7 @@ def test_overturning_statistics_agree_between_tolerances():
     overturning times differ by more than 1 ms)."""
     tight, loose = _statistics_agree(200, 1, [hc.tolerance(1e-9), hc.tolerance(1e-6)])
     both = hc.overturned(tight) & hc.overturned(loose)
-    t_tight, t_loose = (r[:, codes.R_T_OVERTURN] for r in (tight, loose))
+    t_tight, t_loose = (r["t_overturn"] for r in (tight, loose))
     assert np.any(np.abs(t_tight[both] - t_loose[both]) > 1e-3)
 
 
