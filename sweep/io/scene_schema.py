@@ -20,7 +20,7 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fi
                       PlainValidator, ValidationError, ValidationInfo, WithJsonSchema,
                       field_validator, model_validator)
 
-from kernels.api import DEFAULTS, scene_row
+from kernels.api import DEFAULTS, PackingError, scene_row
 from kernels.codes import LANDING_NAMES
 
 from . import records, units
@@ -35,7 +35,7 @@ SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks w
 KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic")
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
-MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 parameter row holds exactly
+MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 scene field holds exactly
 
 
 @dataclass(frozen=True)
@@ -705,12 +705,14 @@ def _check_packable(resolved, scene):
     as written may leave the float range in SI (a displacement amplitude times omega^2)."""
     try:
         scene_row(resolved, [])
-    except (ValueError, ArithmeticError) as err:  # the kernel names the path in backticks
-        text = str(err)
-        path = text.split("`")[1] if text.count("`") >= 2 else "(scene)"
-        node = scene
-        for key in path.split("."):
-            node = getattr(node, key, None)
-        given = MISSING if node is None else str(node) if isinstance(node, Quantity) else node
-        message = text.replace(f"`{path}` ", "").replace("`", "")
-        raise FileProblems([Problem(path, given, f"in SI units: {message}")]) from None
+    except PackingError as err:                  # the kernel names the value's dotted path
+        path, message = err.path, err.reason
+    except (ValueError, ArithmeticError) as err:
+        path, message = "(scene)", str(err)
+    else:
+        return
+    node = scene
+    for key in path.split("."):
+        node = getattr(node, key, None)
+    given = MISSING if node is None else str(node) if isinstance(node, Quantity) else node
+    raise FileProblems([Problem(path, given, f"in SI units: {message.replace('`', '')}")])
