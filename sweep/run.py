@@ -12,7 +12,7 @@ The command parses its arguments, takes the communicator (``runner.mpi``) and ha
 """
 import sys
 
-from .runner.command import EXIT_FAILED, main, parse_args  # noqa: F401
+from .runner.command import main, parse_args  # noqa: F401
 
 if __name__ == "__main__":
     sys.exit(main())

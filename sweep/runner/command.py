@@ -10,12 +10,10 @@ import sys
 import warnings
 
 from ..cli import argument_parser, checked_type, command, positive_int
-from ..io.problems import EXIT_BAD_INPUT
+from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED
 from ..io.study_schema import MAX_CELLS
 from . import grid, mpi
 from .cells import CELL_BUDGET
-
-EXIT_FAILED = 1
 
 # seconds of a budget or a time-out: 0 for no limit
 _seconds = checked_type(float, lambda v: 0 <= v < math.inf, "a finite number of seconds >= 0")

@@ -19,15 +19,13 @@ from contextlib import contextmanager
 
 from .. import cf
 from ..io.files import output_problem
-from ..io.problems import EXIT_BAD_INPUT, FileProblems, Problem
+from ..io.exits import EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK
+from ..io.problems import FileProblems, Problem
 from ..io.study_schema import load_study
 from . import fingerprint, grid, mpi, refine, store
 from .lock import LockHeld, OutputLock
 from .progress import Progress
 from .summary import dry_run, refine_summary, refine_text, say, shape_text, summary
-
-EXIT_OK = 0
-EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports Ctrl-C
 
 
 def _stop(comm, code):
