@@ -43,11 +43,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .io.exits import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED
 from .io.problems import InputWarning
 from .io.units import listing
 
-EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE
-EXIT_INTERRUPTED = 130  # 128 + SIGINT
 EPILOG = (f"A quantity is a number in SI units (m, s, rad, Hz) or a string '<number> <unit>'; "
           f"units: {listing()} (west, v_H and alpha: times the body's (B/H) g, single-shock "
           "overturning velocity and slenderness angle).  Every key of scene, study and bodies "

@@ -23,11 +23,10 @@ from pathlib import Path
 
 from .cli import argument_parser, command, print_json
 from .io.bodies_schema import load_bodies, load_survey  # noqa: F401  (load_bodies: one site)
+from .io.exits import EXIT_FAILED, EXIT_OK
 from .io.files import output_problems, write_csv
 from .io.problems import MISSING, FileProblems, Problem, reported
 from .paper.estimate import estimate, format_text
-
-EXIT_FAILED = 1
 
 
 def _parse(argv):
@@ -93,7 +92,7 @@ def _write_studies(survey, folder):
           f"{survey.source} reads them:")
     for path in written:
         print(f"  mpiexec -n <ranks> python -m sweep.run {path}")
-    return 0
+    return EXIT_OK
 
 
 def _site_json(site, deterministic, probabilistic):
@@ -209,7 +208,7 @@ def main(argv=None):
                              for row in _csv_rows(s, d, p)])
     if args.output:
         _figures(figure_paths(args.output, survey.sites), results)
-    return 0
+    return EXIT_OK
 
 
 if __name__ == "__main__":

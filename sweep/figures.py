@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from .cli import argument_parser, command
-from .io.problems import EXIT_BAD_INPUT
+from .io.exits import EXIT_BAD_INPUT, EXIT_OK
 from .runner import mpi
 from .runner.progress import emit, format_seconds
 
@@ -126,7 +126,7 @@ def run_studies(names):
         status = run([str(STUDIES / f"{name}.yaml"), "--force", "--quiet"])
         if status:
             return status
-    return 0
+    return EXIT_OK
 
 
 def classify(comm, datasets):
@@ -180,7 +180,7 @@ def draw_fragility(comm, output):
                                 "--dataset", str(dataset)])
         if status:
             return status
-    return 0
+    return EXIT_OK
 
 
 def open_datasets(names):
@@ -229,7 +229,7 @@ def main(argv=None):
         mpi.barrier(comm)
         stages.done(f"{len(FRAGILITY)} fragility figures drawn")
         stages.total(output)
-    return 0
+    return EXIT_OK
 
 
 if __name__ == "__main__":

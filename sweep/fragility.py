@@ -13,8 +13,9 @@ import sys
 from pathlib import Path
 
 from .cli import argument_parser, checked_type, command, positive_int, print_json
+from .io.exits import EXIT_BAD_INPUT, EXIT_OK
 from .io.files import output_problems
-from .io.problems import EXIT_BAD_INPUT, FileProblems
+from .io.problems import FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
 from .probability.fragility import (DEFAULT_BINS, INTENSITY_MEASURES, FragilityError,
                                     counted, default_levels, describe_group, group_coords,
@@ -116,7 +117,7 @@ def main(argv=None):
     else:
         print(format_table(frag))
         print(f"wrote {dataset_path}" + (f" and {args.output}" if args.output else ""))
-    return 0
+    return EXIT_OK
 
 
 def _history(argv):

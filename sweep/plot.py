@@ -20,8 +20,9 @@ from pathlib import Path
 import yaml
 
 from .cli import argument_parser, command
+from .io.exits import EXIT_BAD_INPUT, EXIT_OK
 from .io.files import output_problems
-from .io.problems import EXIT_BAD_INPUT, FileProblems
+from .io.problems import FileProblems
 from .paper import classify
 from .plots.histories import figure_history
 from .plots.landing import figure_landing
@@ -163,7 +164,7 @@ def _save(fig, output):
     """Write the figure whole (``sweep.plots.style.save_figure``) and say so."""
     save_figure(fig, Path(output))
     print(f"wrote {output}")
-    return 0
+    return EXIT_OK
 
 
 if __name__ == "__main__":

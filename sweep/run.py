@@ -6,13 +6,13 @@ dataset (DESIGN.md sections 5-7).
                                    [--cell-budget S] [--rank-timeout S]
     mpiexec -n 2 python -m sweep.run STUDY.yaml
 
-The command parses its arguments, takes the communicator (``runner.mpi``) and hands over to
-``runner.launch``, which plans, deals, computes and merges; its arguments and entry point are
-``runner.command``'s, which the site estimate also calls.
+The command parses its arguments into ``runner.options.RunOptions``, takes the communicator
+(``runner.mpi``) and hands over to ``runner.launch.run_file``, which plans, deals, computes and
+merges (the site estimate calls it too); its arguments and entry point are ``runner.command``'s.
 """
 import sys
 
-from .runner.command import EXIT_FAILED, main, parse_args  # noqa: F401
+from .runner.command import main, parse_args  # noqa: F401
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 from .cli import argument_parser, checked_type, command, print_json
+from .io.exits import EXIT_OK
 from .io.files import output_problems
 from .io.problems import FileProblems, reported
 from .io.records import provenance_line
@@ -94,14 +95,14 @@ def main(argv=None):
                           end=args.end)
     if args.json:
         print_json(to_json_dict(result), one_line_per_key=True)
-        return 0
+        return EXIT_OK
     print(summary(result))
     for line in read:
         print(line)
     if not args.summary:
         for path in files.values():
             print(f"wrote {path}")
-    return 0
+    return EXIT_OK
 
 
 if __name__ == "__main__":

@@ -18,8 +18,9 @@ placed by what they are rather than by their folder:
   it (``from sweep import __version__`` is an import of the top layer: the version lives in
   ``sweep._version``).  Importing a submodule runs the ``__init__`` of its packages; that is not
   counted, only what an import statement names.
-* ``sweep.cli`` is the plumbing every command shares (argument parser, exit statuses, JSON
-  printing, ``report_command``).  It imports only ``io``, and the report modules of ``paper``
+* ``sweep.cli`` is the plumbing every command shares (argument parser, how a command ends, JSON
+  printing, ``report_command``; the exit statuses themselves are ``sweep.io.exits``, the one
+  table that commands and the runner alike import).  It imports only ``io``, and the report modules of ``paper``
   (``python -m sweep.paper.rates``, ``python -m sweep.paper.subharmonic``) and the runner's
   ``runner.command`` (the arguments of ``python -m sweep.run``) build their ``main`` with it, so
   it sits just above ``io``, below everything that may call it.  The thin command modules

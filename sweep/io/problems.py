@@ -16,7 +16,7 @@ import warnings
 from collections import namedtuple
 from contextlib import contextmanager
 
-EXIT_BAD_INPUT = 2  # exit status of a command given a bad file
+from .exits import EXIT_BAD_INPUT
 
 Problem = namedtuple("Problem", "path value message")
 Problem.__doc__ = """One problem in a file: dotted ``path``, the ``value`` given, ``message``."""

@@ -1,12 +1,13 @@
 """The simulations behind a site estimate (``sweep.probability.site``): the bodies of a survey as
 specimens, one study per specimen under the ensemble, run or reused, their datasets read.
 
-Each distinct body (B, H, i_g, mu) is one study: levels x members, run by ``python -m
-sweep.run`` in this process (:func:`ensemble_datasets`) into ``<folder>/<key>.nc`` with the
-study beside it as ``<key>.yaml``; a dataset whose fingerprint matches the inputs is reused,
-so a second estimate is instant.  The study schema wants distinct values along every axis, and
-bodies of one site often share B, H or mu, so the bodies cannot be one zipped dimension; one
-study per body also lets an added body or a second site reuse what is done.  On a cluster:
+Each distinct body (B, H, i_g, mu) is one study: levels x members, run as ``python -m
+sweep.run`` runs it, in this process (``runner.launch.run_file``; :func:`ensemble_datasets`),
+into ``<folder>/<key>.nc`` with the study beside it as ``<key>.yaml``; a dataset whose
+fingerprint matches the inputs is reused, so a second estimate is instant.  The study schema
+wants distinct values along every axis, and bodies of one site often share B, H or mu, so the
+bodies cannot be one zipped dimension; one study per body also lets an added body or a second
+site reuse what is done.  On a cluster:
 ``python -m sweep.estimate BODIES.yaml --write-study DIR`` writes the studies, ``mpiexec -n N
 python -m sweep.run DIR/<key>.yaml`` runs each, and the estimate then reads their datasets.
 A body that slides (mu < B/H) is not simulated.  SI units throughout.
@@ -18,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import records
+from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED
 from ..io.problems import InputWarning
 from ..io.scene_schema import T_TAIL
 from ..paper import estimate as paper_estimate
@@ -158,15 +160,23 @@ class RunFailed(RuntimeError):
 
 def _run_study(path):
     """The dataset of the study at ``path`` and whether it was computed now: its output when
-    the fingerprint of its inputs matches, else computed by ``python -m sweep.run`` in this
-    process (``--force`` when the output or part files hold other inputs).  Its doubts of
-    the PGA levels are not said again for every body: they are the bodies file's, said where
-    it was read."""
+    the fingerprint of its inputs matches, else computed in this process as ``python -m
+    sweep.run`` computes it (``runner.launch.run_file``; ``--force`` when the output or part
+    files hold other inputs).  Its doubts of the PGA levels are not said again for every
+    body: they are the bodies file's, said where it was read.
+
+    Raises
+    ------
+    RunFailed
+        The run was refused or failed (said on stderr).
+    KeyboardInterrupt
+        Ctrl-C during the run (it said what is saved).
+    """
     import xarray as xr
 
     from ..io.study_schema import load_study
-    from ..runner import fingerprint, store
-    from ..runner.command import main as run_command
+    from ..runner import fingerprint, mpi, store
+    from ..runner.options import RunOptions
 
     study = load_study(path, check_cells=False)
     stamp = fingerprint.combined(fingerprint.components(study))
@@ -174,15 +184,29 @@ def _run_study(path):
     if ran:
         parts = store.PartStore(store.parts_dir(study.output)).manifest_stamp()
         stale = study.output.exists() or parts not in (None, stamp)
+        options = RunOptions(quiet=True, force=stale,
+                             argv=(str(path), "--quiet", *(("--force",) if stale else ())))
+        comm = mpi.world_or_say("sweep.run")
+        if comm is None:
+            raise RunFailed(_ended(path, EXIT_BAD_INPUT))
+        from ..runner import launch  # the study machinery once the communicator stands
+
         with warnings.catch_warnings():  # the levels were checked in the bodies file
             warnings.filterwarnings("ignore", r"grid\.pga\b", InputWarning)
-            status = run_command([str(path), "--quiet", *(["--force"] if stale else [])])
-        if status == 130:
-            raise KeyboardInterrupt
-        if status != 0:
-            raise RunFailed(f"python -m sweep.run {path} ended with status {status}")
+            try:
+                launch.run_file(comm, str(path), options)
+            except launch.Refused:
+                raise RunFailed(_ended(path, EXIT_BAD_INPUT)) from None
+            except mpi.JobFailure:
+                raise RunFailed(_ended(path, EXIT_FAILED)) from None
     with xr.open_dataset(study.output) as ds:
         return ds.load(), ran
+
+
+def _ended(path, status):
+    """Why a study of the estimate did not run to its end: the status its command would
+    have ended with."""
+    return f"python -m sweep.run {path} ended with status {status}"
 
 
 def ensemble_datasets(survey, folder, say=None):

@@ -1,21 +1,18 @@
 """The arguments and the entry point of ``python -m sweep.run`` (``sweep/run.py`` calls them).
 
-:func:`main` parses the arguments, takes the communicator (``runner.mpi``) and hands over to
-``runner.launch``, which plans, deals, computes and merges.  It is here, in the runner, so that
-the site estimate (``sweep.probability.site_studies``) can run a study file in its own process
-exactly as the command does, without importing a command from a layer above it.
+:func:`main` parses the arguments into a :class:`RunOptions` (:func:`run_options`), takes the
+communicator (``runner.mpi``) and hands over to ``runner.launch.run_file``, which plans, deals,
+computes and merges; how that ends becomes the exit status (``io.exits``).
 """
 import math
 import sys
-import warnings
 
 from ..cli import argument_parser, checked_type, command, positive_int
-from ..io.problems import EXIT_BAD_INPUT
+from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.study_schema import MAX_CELLS
 from . import grid, mpi
 from .cells import CELL_BUDGET
-
-EXIT_FAILED = 1
+from .options import RunOptions
 
 # seconds of a budget or a time-out: 0 for no limit
 _seconds = checked_type(float, lambda v: 0 <= v < math.inf, "a finite number of seconds >= 0")
@@ -58,6 +55,14 @@ def parse_args(argv=None):
     return args
 
 
+def run_options(args):
+    """The :class:`RunOptions` of the arguments ``args`` of :func:`parse_args`."""
+    return RunOptions(output=args.output, dry_run=args.dry_run, force=args.force,
+                      quiet=args.quiet, chunk_size=args.chunk_size, seed=args.seed,
+                      max_cells=args.max_cells, cell_budget=args.cell_budget,
+                      rank_timeout=args.rank_timeout, argv=tuple(args.argv))
+
+
 @command
 def main(argv=None):
     """Entry point; returns the exit status (0 ok, 1 error, 2 bad input or refused, 130
@@ -68,15 +73,11 @@ def main(argv=None):
         return EXIT_BAD_INPUT
     from . import launch  # the study machinery once the communicator stands
     try:
-        with mpi.abort_on_exception(comm), warnings.catch_warnings():
-            warnings.showwarning = _one_line  # cells flagged as they fail: one line each
-            return launch.run(comm, args)
-    except mpi.JobFailure as err:  # one process: said in words
-        print(f"sweep.run: error: {err}", file=sys.stderr, flush=True)
+        launch.run_file(comm, args.study, run_options(args))
+    except launch.Refused:  # said by rank 0
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:  # rank 0 said what is saved
+        return EXIT_INTERRUPTED
+    except mpi.JobFailure:  # one process: said in words (several ranks abort instead)
         return EXIT_FAILED
-
-
-def _one_line(message, category, filename, lineno, file=None, line=None):
-    """A warning as one line of the run's log, without the source line."""
-    print(f"sweep.run: warning: {message}", file=sys.stderr, flush=True)
-
+    return EXIT_OK

@@ -1,59 +1,80 @@
 """A study on the ranks: rank 0 plans, every rank computes its chunks, rank 0 merges.
 
-Rank 0 reads and checks the study and its output path (every problem at once, exit status 2,
-nothing written), takes the output's lock for the whole run (``runner.lock``: a second run on
-the same output is refused), removes what killed runs left, prepares the part files (resuming
-from those of a killed run of the same inputs) and deals the chunks; every rank computes and
-writes its parts; rank 0 checks every part against the manifest and merges them into the
-dataset.  A study with ``refine:`` runs in rounds (``runner.refine``): rank 0 deals each
-round's cells the same way, merges the round and decides the next one.  Ctrl-C ends every
-rank with one line saying what is saved (exit status 130).  :func:`run_study` does the same in
-one process and returns the Dataset (``sweep.run_study`` in a notebook).
+Rank 0 reads and checks the study and its output path (every problem at once, nothing
+written), takes the output's lock for the whole run (``runner.lock``: a second run on the same
+output is refused), removes what killed runs left, prepares the part files (resuming from
+those of a killed run of the same inputs) and tells every rank what to run (a :class:`Start`
+plan, or :class:`Stop`).  The cells then run in rounds (:class:`Round`): one for a grid study,
+one per bisection step for a study with ``refine:`` (``runner.refine``); rank 0 deals each
+round's chunks, every rank computes and writes its parts, rank 0 checks every part against the
+manifest and merges them.  :func:`run_file` is what ``python -m sweep.run`` and the site
+estimate run; it ends by raising: :class:`Refused`, ``KeyboardInterrupt`` after Ctrl-C (with
+one line saying what is saved) or ``mpi.JobFailure``.  :func:`run_study` runs the same rounds
+in one process with the serial communicator, keeps the results in memory and returns the
+Dataset (``sweep.run_study`` in a notebook).
 """
 import functools
 import signal
 import sys
 import threading
 import time
+import warnings
+from collections import namedtuple
 from contextlib import contextmanager
 
 from .. import cf
 from ..io.files import output_problem
-from ..io.problems import EXIT_BAD_INPUT, FileProblems, Problem
+from ..io.problems import FileProblems, Problem
 from ..io.study_schema import load_study
 from . import fingerprint, grid, mpi, refine, store
 from .lock import LockHeld, OutputLock
+from .options import RunOptions
 from .progress import Progress
 from .summary import dry_run, refine_summary, refine_text, say, shape_text, summary
 
-EXIT_OK = 0
-EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports Ctrl-C
+# What rank 0 hands every rank (mpi.distribute)
+Stop = namedtuple("Stop", "refused")
+Stop.__doc__ = """The job ends before any cell runs: ``refused`` (a bad study or output, a held
+lock: rank 0 said why), or done (a dry run, a result already complete for these inputs)."""
+
+Start = namedtuple("Start", "text source output parts stamp")
+Start.__doc__ = """A run: the study (its file's ``text`` and ``source``, its ``output``), the
+folder of its ``parts`` and the fingerprint ``stamp`` of its inputs."""
+
+Round = namedtuple("Round", "study parts stamp chunks")
+Round.__doc__ = """The cells of one round dealt to a rank: ``study`` (None: the run's own study;
+else a refine round's point study), the ``parts`` folder and ``stamp`` its part files are
+written with, and the rank's ``chunks`` of cell ids.  None instead of a Round ends the rounds."""
+
+Deal = namedtuple("Deal", "done chunk_size chunks")
+Deal.__doc__ = """Rank 0's dealing of a round: the cells ``done`` by an earlier run, the
+``chunk_size`` and the ``chunks`` of every rank (``grid.plan``)."""
 
 
-def _stop(comm, code):
-    """Plans telling every rank to end with ``code``."""
-    return [{"exit": code}] * comm.Get_size()
+class Refused(Exception):
+    """The study, its output or the output's lock refused the run; rank 0 said why and nothing
+    was run.  Raised on every rank."""
 
 
-def _problems(args, err):
+def _problems(path, err):
     """Print a file's problems as the other commands do (nothing was run)."""
-    say(f"sweep.run: {args.study}: {len(err.problems)} problem"
+    say(f"sweep.run: {path}: {len(err.problems)} problem"
         f"{'s' if len(err.problems) != 1 else ''}; nothing was run:", file=sys.stderr)
     for line in str(err).splitlines():
         say(f"  {line}", file=sys.stderr)
 
 
-def _load(args):
+def _load(path, options):
     """The checked study and its writable output, or :class:`FileProblems`."""
-    study = load_study(args.study, output=args.output, max_cells=args.max_cells)
+    study = load_study(path, output=options.output, max_cells=options.max_cells)
     why = output_problem(study.output)
     if why is not None:
-        raise FileProblems([Problem("output" if args.output is None else "-o/--output",
-                                    str(study.output), why)], args.study)
+        raise FileProblems([Problem("output" if options.output is None else "-o/--output",
+                                    str(study.output), why)], path)
     return study
 
 
-def _open(study, args, parts):
+def _open(study, options, parts):
     """Take the output's lock and make the output and parts ready (rank 0).
 
     Returns the lock, or None when the output is already the dataset of these very inputs
@@ -64,14 +85,14 @@ def _open(study, args, parts):
     LockHeld, store.StoreError
     """
     study.output.parent.mkdir(parents=True, exist_ok=True)
-    lock = OutputLock(study.output, command=_command(args, None)).acquire()
+    lock = OutputLock(study.output, command=options.command_line()).acquire()
     try:
         removed = store.clean_leftovers(study.output)
-        if removed and not args.quiet:
+        if removed and not options.quiet:
             say(f"sweep.run: removed what a killed run left: {', '.join(removed)}",
                 file=sys.stderr)
         stamp = fingerprint.combined(fingerprint.components(study))
-        if not args.force and store.finished_earlier(study.output, stamp):
+        if not options.force and store.finished_earlier(study.output, stamp):
             ours = parts.manifest_stamp() == stamp  # a run killed before its clean-up ended
             if ours:
                 parts.remove()
@@ -80,81 +101,174 @@ def _open(study, args, parts):
                 + "; nothing to do (--force computes it again)", file=sys.stderr)
             lock.release()
             return None
-        store.check_output(study.output, args.force)
-        parts.prepare(study, discard=args.force)
+        store.check_output(study.output, options.force)
+        parts.prepare(study, discard=options.force)
     except BaseException:
         lock.release()
         raise
     return lock
 
 
-def _plan(comm, args):
-    """Rank 0: check the study, the output and the parts; the plan of every rank, the study
-    and the output's lock."""
+def _deal(n, done, options, size):
+    """The :class:`Deal` of ``n`` cells less those ``done`` to ``size`` ranks."""
+    chunk_size = options.chunk_size or grid.default_chunk_size(n - len(done), size)
+    return Deal(done, chunk_size, grid.plan(n, done, chunk_size, size, options.seed))
+
+
+def _plan(comm, path, options):
+    """Rank 0: check the study, the output and the parts.
+
+    Returns the plan of every rank (:class:`Start` or :class:`Stop`), the study, the output's
+    lock and, for a grid study, the :class:`Deal` of its cells (said before the kernel is
+    loaded).
+    """
     size = comm.Get_size()
     try:
-        study = _load(args)
+        study = _load(path, options)
     except FileProblems as err:
-        _problems(args, err)
-        return _stop(comm, EXIT_BAD_INPUT), None, None
+        _problems(path, err)
+        return [Stop(refused=True)] * size, None, None, None
     parts = store.PartStore(store.parts_dir(study.output))
-    if args.dry_run:
+    if options.dry_run:
         done = parts.done_cells() if parts.directory.is_dir() else []
-        dry_run(study, size, args.seed, done)
-        return _stop(comm, EXIT_OK), None, None
+        dry_run(study, size, options.seed, done)
+        return [Stop(refused=False)] * size, None, None, None
     try:
-        lock = _open(study, args, parts)
+        lock = _open(study, options, parts)
     except (LockHeld, store.StoreError, OSError) as err:
         say(f"sweep.run: error: {err}", file=sys.stderr)
-        return _stop(comm, EXIT_BAD_INPUT), None, None
+        return [Stop(refused=True)] * size, None, None, None
     if lock is None:
-        return _stop(comm, EXIT_OK), None, None
+        return [Stop(refused=False)] * size, None, None, None
     from .cells import warm_up
-    common = {"exit": None, "text": study.text, "source": study.source,
-              "output": str(study.output), "parts": str(parts.directory),
-              "stamp": parts.stamp}
-    if study.refine:  # rounds are dealt one by one (_run_refine)
-        if not args.quiet:
-            say(f"sweep.run: {study.name}: {refine_text(study)}; on {size} "
-                f"rank{'s' if size > 1 else ''}", file=sys.stderr)
-        warm_up()
-        return [common] * size, study, lock
-    n = study.n_cells
-    done = parts.done_cells()
-    chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
-    dealt = grid.plan(n, done, chunk_size, size, args.seed)
-    if not args.quiet:
-        say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {size} "
-            f"rank{'s' if size > 1 else ''}, chunks of {chunk_size}", file=sys.stderr)
-        if len(done):
-            say(f"sweep.run: resuming: {len(done)} cells already done in {parts.directory}",
-                file=sys.stderr)
+    start = Start(study.text, study.source, str(study.output), str(parts.directory), parts.stamp)
+    ranks = f"{size} rank{'s' if size > 1 else ''}"
+    first = None
+    if study.refine:  # rounds are dealt one by one (_Rounds)
+        if not options.quiet:
+            say(f"sweep.run: {study.name}: {refine_text(study)}; on {ranks}", file=sys.stderr)
+    else:
+        n = study.n_cells
+        first = _deal(n, parts.done_cells(), options, size)
+        if not options.quiet:
+            say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {ranks}, chunks "
+                f"of {first.chunk_size}", file=sys.stderr)
+            if len(first.done):
+                say(f"sweep.run: resuming: {len(first.done)} cells already done in "
+                    f"{parts.directory}", file=sys.stderr)
     warm_up()  # rank 0 compiles (or loads the cache) before the others start
-    plans = [{**common, "done": len(done), "chunks": dealt[rank], "dealt": dealt if rank == 0
-              else None} for rank in range(size)]
-    return plans, study, lock
-
-
-def _command(args, size):
-    """The command line, for the dataset's ``history`` attribute and the lock's holder."""
-    ranks = "" if size is None else f" ({size} ranks)"
-    return f"{' '.join(['python -m sweep.run', *args.argv])}{ranks}"
+    return [start] * size, study, lock, first
 
 
 def _import_xarray():
     import xarray  # noqa: F401  (for the merge, while rank 0 waits for the others)
 
 
-def _watch(comm, args, dealt):
+def _watch(comm, options, dealt):
     """Rank 0's watch over the other ranks (none with one rank or ``--rank-timeout 0``)."""
-    if comm.Get_size() == 1 or not args.rank_timeout:
+    if comm.Get_size() == 1 or not options.rank_timeout:
         return None
-    return mpi.Watch(dealt, floor=args.rank_timeout)
+    return mpi.Watch(dealt, floor=options.rank_timeout)
 
 
-def _chunk_runner(args):
+def _chunk_runner(options):
     from .cells import run_chunk
-    return functools.partial(run_chunk, budget=args.cell_budget)
+    return functools.partial(run_chunk, budget=options.cell_budget)
+
+
+class _Rounds:
+    """Rank 0's part of each round: deal its cells to the ranks, compute rank 0's chunks,
+    follow the others, merge; ``stats`` adds up every rank's :class:`mpi.RankDone`.
+
+    Parameters
+    ----------
+    comm : communicator or SerialComm
+    study : Study
+        The run's study.
+    options : RunOptions
+    name : str
+        Start of the progress lines (``sweep.run``, ``sweep.run_study``).
+    parts : PartStore, optional
+        The run's part files, prepared (a refine study's rounds each get a folder in it);
+        None: the results are kept in memory (one rank, nothing written).
+    first : Deal, optional
+        The dealing of a grid study's cells, made while planning.
+    """
+
+    def __init__(self, comm, study, options, name, parts=None, first=None):
+        self.comm, self.study, self.options, self.name = comm, study, options, name
+        self.parts, self.first = parts, first
+        self.stats = {}
+
+    def _round_parts(self, index, study):
+        """The part files of round ``index`` (None: a grid study's) and their fingerprint."""
+        if self.parts is None:
+            return None, None
+        if index is None:
+            return self.parts, self.parts.stamp
+        parts = store.PartStore(store.round_dir(self.parts.directory, index))
+        return parts, parts.prepare(study, discard=True)  # the fingerprint guards the folder
+
+    def __call__(self, index, study):
+        """The arrays of every cell of ``study``, in cell order: the run's grid (``index``
+        None) or refine round ``index`` (``refine.bisect``'s ``evaluate``)."""
+        comm, options = self.comm, self.options
+        n, size = study.n_cells, comm.Get_size()
+        parts, stamp = self._round_parts(index, study)
+        if index is None and self.first is not None:
+            deal = self.first
+        else:
+            deal = _deal(n, () if parts is None else parts.done_cells(), options, size)
+            if len(deal.done) and not options.quiet:
+                say(f"sweep.run: resuming round {index}: {len(deal.done)} of {n} cells "
+                    f"already done in {parts.directory}", file=sys.stderr)
+        mpi.distribute(comm, [Round(None if study is self.study else study,
+                                    None if parts is None else str(parts.directory), stamp,
+                                    chunks) for chunks in deal.chunks])
+        progress = Progress(n, len(deal.done), quiet=options.quiet,
+                            prefix=self.name if index is None else f"{self.name}: round {index}")
+        kept, stats = mpi.work(comm, study, deal.chunks[0], store=parts, progress=progress,
+                               run_chunk=_chunk_runner(options), on_idle=_import_xarray,
+                               watch=_watch(comm, options, deal.chunks))
+        progress.close()
+        for rank, done in stats.items():
+            before = self.stats.get(rank, mpi.RankDone(0, 0.0))
+            self.stats[rank] = mpi.RankDone(before.cells + done.cells,
+                                            before.seconds + done.seconds)
+        return store.merge(kept, n) if parts is None else parts.merge(n)
+
+
+def _follow(comm, study, options):
+    """A rank other than 0: compute the chunks of every round rank 0 deals, until it ends."""
+    run_chunk = _chunk_runner(options)
+    while (plan := mpi.distribute(comm)) is not None:
+        mpi.work(comm, study if plan.study is None else plan.study, plan.chunks,
+                 run_chunk=run_chunk, store=store.PartStore(plan.parts, plan.stamp))
+
+
+def _compute(comm, study, options, rounds=None):
+    """Every cell of ``study`` on the ranks: one round, or a refine study's rounds.
+
+    ``rounds`` is rank 0's :class:`_Rounds`.  Returns, on rank 0, the arrays of every cell
+    (``cf.to_dataset``) or a refine study's ``refine.Brackets``; None on the other ranks.
+    """
+    if comm.Get_rank() != 0:
+        _follow(comm, study, options)
+        return None
+    if study.refine:
+        result = refine.bisect(study, lambda index, cells: rounds(index, cells)["overturned"])
+    else:
+        result = rounds(None, study)
+    mpi.distribute(comm, [None] * comm.Get_size())  # the rounds are over
+    return result
+
+
+def _dataset(study, result, history):
+    """The dataset of :func:`_compute`'s result."""
+    if study.refine:
+        return cf.refine_dataset(study, refine.arrays(result), rounds=result.rounds,
+                                 history=history)
+    return cf.to_dataset(study, result, history=history)
 
 
 def _write(ds, study, stamp, parts):
@@ -164,69 +278,25 @@ def _write(ds, study, stamp, parts):
     parts.remove()
 
 
-def _run_refine(comm, args, study, plan, t_start):
-    """The rounds of a refine study: rank 0 plans and merges each one, every rank computes."""
-    rank, size = comm.Get_rank(), comm.Get_size()
-    run_chunk = _chunk_runner(args)
-    if rank != 0:
-        while (round_plan := mpi.distribute(comm)) is not None:
-            mpi.work(comm, round_plan["study"], round_plan["chunks"], run_chunk=run_chunk,
-                     store=store.PartStore(round_plan["parts"], round_plan["stamp"]))
-        mpi.barrier(comm)
-        return EXIT_OK
-    stats = {}
-
-    def evaluate(index, round_study):
-        parts = store.PartStore(store.round_dir(plan["parts"], index))
-        stamp = parts.prepare(round_study, discard=True)  # the fingerprint guards the folder
-        n, done = round_study.n_cells, parts.done_cells()
-        chunk_size = args.chunk_size or grid.default_chunk_size(n - len(done), size)
-        dealt = grid.plan(n, done, chunk_size, size, args.seed)
-        if len(done) and not args.quiet:
-            say(f"sweep.run: resuming round {index}: {len(done)} of {n} cells already done "
-                f"in {parts.directory}", file=sys.stderr)
-        mpi.distribute(comm, [{"study": round_study, "parts": str(parts.directory),
-                               "stamp": stamp, "chunks": chunks} for chunks in dealt])
-        progress = Progress(n, len(done), quiet=args.quiet, prefix=f"sweep.run: round {index}")
-        _, busy = mpi.work(comm, round_study, dealt[0], store=parts, progress=progress,
-                           run_chunk=run_chunk, on_idle=_import_xarray,
-                           watch=_watch(comm, args, dealt))
-        progress.close()
-        for r, (cells, seconds) in busy.items():
-            before = stats.get(r, (0, 0.0))
-            stats[r] = (before[0] + cells, before[1] + seconds)
-        return parts.merge(n)["overturned"]
-
-    brackets = refine.bisect(study, evaluate)
-    mpi.distribute(comm, [None] * size)
-    ds = cf.refine_dataset(study, refine.arrays(brackets), rounds=brackets.rounds,
-                           history=_command(args, size))
-    _write(ds, study, plan["stamp"], store.PartStore(plan["parts"]))
-    refine_summary(study, brackets, time.perf_counter() - t_start, stats, args.quiet, size)
-    mpi.barrier(comm)
-    return EXIT_OK
-
-
 class _State:
     """What one rank knows of its run so far: for Ctrl-C's line and the lock's release."""
 
     study = plan = lock = None
 
 
-def _interrupted(state, args):
+def _interrupted(state, options):
     """Rank 0's one line after Ctrl-C: what is saved and how to resume."""
-    plan = state.plan or {}
-    if state.study is None or plan.get("exit", 0) is not None:
+    if state.study is None or not isinstance(state.plan, Start):
         say("sweep.run: interrupted before any cell ran; nothing was written", file=sys.stderr)
         return
-    parts = store.PartStore(plan["parts"])
+    parts = store.PartStore(state.plan.parts)
     if state.study.refine:
         saved = f"the finished rounds and chunks are saved in {parts.directory}"
     else:
         saved = (f"{len(parts.done_cells())} of {state.study.n_cells} cells are saved in "
                  f"{parts.directory}")
     say(f"sweep.run: interrupted: {saved}; run the same command again to resume "
-        f"({_command(args, None)})", file=sys.stderr)
+        f"({options.command_line()})", file=sys.stderr)
 
 
 @contextmanager
@@ -242,29 +312,69 @@ def _sigint_ignored():
         signal.signal(signal.SIGINT, previous)
 
 
-def run(comm, args):
-    """Every rank's part of ``python -m sweep.run`` (``args`` of ``runner.command.parse_args``);
-    returns the exit status: 0 done, 2 bad input or refused, 130 interrupted."""
+def _one_line(message, category, filename, lineno, file=None, line=None):
+    """A warning as one line of the run's log, without the source line."""
+    say(f"sweep.run: warning: {message}", file=sys.stderr)
+
+
+def run_file(comm, path, options):
+    """Every rank's part of running the study file at ``path`` into its output, as
+    ``python -m sweep.run`` does (DESIGN.md section 7).
+
+    Parameters
+    ----------
+    comm : communicator or SerialComm
+        ``mpi.world()``.
+    path : str
+        The study file.
+    options : RunOptions
+
+    Raises
+    ------
+    Refused
+        The study, its output or the output's lock refused the run (said on stderr).
+    KeyboardInterrupt
+        Ctrl-C; rank 0 said what is saved and how to resume.
+    mpi.JobFailure
+        The run failed (said on stderr: in one process here; under MPI the job was aborted).
+    """
+    ended = None
+    try:
+        with mpi.abort_on_exception(comm), warnings.catch_warnings():
+            warnings.showwarning = _one_line  # cells flagged as they fail: one line each
+            try:
+                _run_file(comm, path, options)
+            except (Refused, KeyboardInterrupt) as err:  # every rank leaves, none aborts
+                ended = err
+    except mpi.JobFailure as err:  # one process (several ranks were aborted above)
+        say(f"sweep.run: error: {err}", file=sys.stderr)
+        raise
+    if ended is not None:
+        raise ended
+
+
+def _run_file(comm, path, options):
+    """:func:`run_file` within its guards: the line after Ctrl-C, the lock released."""
     state = _State()
     try:
-        return _run(comm, args, state)
+        _run(comm, path, options, state)
     except KeyboardInterrupt:
         if comm.Get_rank() == 0:
             with _sigint_ignored():  # a second Ctrl-C must not cut the line
-                _interrupted(state, args)
-        return EXIT_INTERRUPTED
+                _interrupted(state, options)
+        raise
     finally:
         if state.lock is not None:
             state.lock.release()
 
 
-def _run(comm, args, state):
-    """The run itself, filling ``state``; returns the exit status."""
+def _run(comm, path, options, state):
+    """The run itself, filling ``state``."""
     rank, size = comm.Get_rank(), comm.Get_size()
     t_start = time.perf_counter()
-    warm = False
+    warm, first = False, None
     if rank == 0:
-        plans, state.study, state.lock = _plan(comm, args)
+        plans, state.study, state.lock, first = _plan(comm, path, options)
     else:  # while rank 0 checks the study: load the kernel if it is cached, else numba only
         from .cells import kernel_cached, warm_up
         warm = kernel_cached()
@@ -274,33 +384,34 @@ def _run(comm, args, state):
             import kernels.driver  # noqa: F401
         plans = None
     plan = state.plan = mpi.distribute(comm, plans)
-    if plan["exit"] is not None:
-        return plan["exit"]
+    if isinstance(plan, Stop):
+        if plan.refused:
+            raise Refused(path)
+        return
     if state.study is None:
-        state.study = load_study(plan["source"], text=plan["text"], output=plan["output"],
+        state.study = load_study(plan.source, text=plan.text, output=plan.output,
                                  check_cells=False, max_cells=None)
         if not warm:
             warm_up()  # loads what rank 0 compiled into the cache
     study = state.study
-    if study.refine:
-        return _run_refine(comm, args, study, plan, t_start)
-    parts = store.PartStore(plan["parts"], plan["stamp"])
-    progress = Progress(study.n_cells, plan["done"], quiet=args.quiet) if rank == 0 else None
-    _, stats = mpi.work(comm, study, plan["chunks"], store=parts, progress=progress,
-                        run_chunk=_chunk_runner(args), on_idle=_import_xarray,
-                        watch=_watch(comm, args, plan["dealt"]) if rank == 0 else None)
+    parts = store.PartStore(plan.parts, plan.stamp)
+    rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
+    result = _compute(comm, study, options, rounds)
     if rank == 0:
-        progress.close()
-        arrays = parts.merge(study.n_cells)
-        _write(cf.to_dataset(study, arrays, history=_command(args, size)), study,
-               plan["stamp"], parts)
-        summary(study, arrays, time.perf_counter() - t_start, stats, args.quiet, size)
+        _write(_dataset(study, result, options.command_line(size)), study, plan.stamp, parts)
+        wall = time.perf_counter() - t_start
+        if study.refine:
+            refine_summary(study, result, wall, rounds.stats, options.quiet, size)
+        else:
+            summary(study, result, wall, rounds.stats, options.quiet, size)
     mpi.barrier(comm)
-    return EXIT_OK
 
 
 def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False):
     """Run a study in this process and return its Dataset (nothing is written).
+
+    The rounds of ``python -m sweep.run`` on the serial communicator, the results kept in
+    memory.
 
     Parameters
     ----------
@@ -325,19 +436,7 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
         Every problem of the study, with dotted paths.
     """
     study = load_study(study)
-    history = f"sweep.run_study({study.source or study.name!r})"
-
-    def run(cells_study, prefix="sweep.run_study"):
-        n = cells_study.n_cells
-        chunks = grid.plan(n, [], chunk_size or grid.default_chunk_size(n, 1), 1, seed)[0]
-        shown = Progress(n, quiet=not progress, prefix=prefix)
-        kept, _ = mpi.work(mpi.SerialComm(), cells_study, chunks, progress=shown)
-        shown.close()
-        return store.merge(kept, n)
-
-    if study.refine:
-        brackets = refine.bisect(study, lambda index, round_study: run(
-            round_study, f"sweep.run_study: round {index}")["overturned"])
-        return cf.refine_dataset(study, refine.arrays(brackets), rounds=brackets.rounds,
-                                 history=history)
-    return cf.to_dataset(study, run(study), history=history)
+    options = RunOptions(quiet=not progress, chunk_size=chunk_size, seed=seed)
+    comm = mpi.SerialComm()
+    result = _compute(comm, study, options, _Rounds(comm, study, options, "sweep.run_study"))
+    return _dataset(study, result, f"sweep.run_study({study.source or study.name!r})")

@@ -3,8 +3,9 @@
 The only module that imports mpi4py, and only when a launcher started the process (or
 ``SWEEP_MPI=1``): a plain ``python -m sweep.run`` never loads MPI, and a broken MPI install
 cannot break an import of ``sweep``.  Rank 0 computes too; the other ranks send it one small
-message per finished chunk with non-blocking sends, which it drains between its own chunks
-with ``Iprobe`` (no busy ``recv``).  Every wait is a test-and-sleep loop, so an idle rank
+message per finished chunk (:class:`ChunkDone`) and one when they are done (:class:`RankDone`)
+with non-blocking sends, which it drains between its own chunks with ``Iprobe`` (no busy
+``recv``).  Every wait is a test-and-sleep loop, so an idle rank
 does not spin.  An exception on any rank prints its traceback and calls
 ``COMM_WORLD.Abort``: the whole job ends within seconds instead of hanging.  Rank 0 watches the
 others (:class:`Watch`): a rank silent for longer than ``max(floor, WATCH_FACTOR x the slowest
@@ -14,6 +15,7 @@ import os
 import sys
 import time
 import traceback
+from collections import namedtuple
 from contextlib import contextmanager
 
 import numpy as np
@@ -31,6 +33,16 @@ WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so fa
 SIZE_VARS = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS",
              "MV2_COMM_WORLD_SIZE")
 RANK_VARS = ("PMI_RANK", "OMPI_COMM_WORLD_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK")
+
+
+ChunkDone = namedtuple("ChunkDone", "cells failed seconds first")
+ChunkDone.__doc__ = """A rank's message to rank 0 (``TAG_PROGRESS``): a chunk of ``cells`` cells, of
+which ``failed`` failed, took ``seconds``; ``first`` is its first cell id (the :class:`Watch`
+finds the chunk by it)."""
+
+RankDone = namedtuple("RankDone", "cells seconds")
+RankDone.__doc__ = """A rank's last message to rank 0 (``TAG_PROGRESS``): it computed ``cells``
+cells in ``seconds`` busy; also the value of :func:`work`'s ``stats`` for each rank."""
 
 
 class LauncherMismatch(RuntimeError):
@@ -208,7 +220,8 @@ def abort_on_exception(comm):
 def distribute(comm, plans=None):
     """Rank 0 hands ``plans[r]`` to each rank r and keeps ``plans[0]``; the others wait for it.
 
-    A plan is any picklable object (what to run, or that the job ends).  Rank 0 must always
+    A plan is any picklable object (what to run, or that the job ends: the named tuples of
+    ``runner.launch``).  Rank 0 must always
     call this once it has decided, even to say "stop", or the other ranks wait forever.
     """
     if comm.Get_rank() == 0:
@@ -282,15 +295,14 @@ def _drain(comm, progress, stats, watch):
     status, finished = MPI.Status(), 0
     while comm.Iprobe(source=MPI.ANY_SOURCE, tag=TAG_PROGRESS, status=status):
         source = status.Get_source()
-        kind, *payload = comm.recv(source=source, tag=TAG_PROGRESS)
-        if kind == "chunk":
-            n, failed, seconds, first = payload
+        message = comm.recv(source=source, tag=TAG_PROGRESS)
+        if isinstance(message, ChunkDone):
             if progress is not None:
-                progress.update(n, failed)
+                progress.update(message.cells, message.failed)
             if watch is not None:
-                watch.chunk_done(source, seconds, first)
-        else:
-            stats[source] = tuple(payload)
+                watch.chunk_done(source, message.seconds, message.first)
+        else:  # RankDone
+            stats[source] = message
             finished += 1
             if watch is not None:
                 watch.rank_done(source)
@@ -325,7 +337,8 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
     results : list of dict
         The chunk results kept in memory (empty with a store).
     stats : dict
-        On rank 0: rank -> (cells computed, seconds busy) for every rank; else this rank's.
+        On rank 0: rank -> :class:`RankDone` (cells computed, seconds busy) for every rank;
+        else this rank's.
 
     Raises
     ------
@@ -359,10 +372,10 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
                 if watch is not None:
                     watch.check()
         else:
-            requests.append(comm.isend(("chunk", len(chunk), _failed(result), seconds,
-                                        int(chunk[0])), dest=0, tag=TAG_PROGRESS))
+            requests.append(comm.isend(ChunkDone(len(chunk), _failed(result), seconds,
+                                                 int(chunk[0])), dest=0, tag=TAG_PROGRESS))
             requests = [r for r in requests if not r.Test()]
-    stats[rank] = (n_done, busy)
+    stats[rank] = RankDone(n_done, busy)
     if rank == 0:
         pending -= _drain(comm, progress, stats, watch) if size > 1 else 0
         if pending > 0 and on_idle is not None:
@@ -374,7 +387,7 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
                     watch.check()
                 time.sleep(POLL)
     else:
-        requests.append(comm.isend(("done", n_done, busy), dest=0, tag=TAG_PROGRESS))
+        requests.append(comm.isend(stats[rank], dest=0, tag=TAG_PROGRESS))
         for request in requests:
             wait(request)
     return kept, stats

@@ -11,7 +11,8 @@ import pytest
 import yaml
 from study_helpers import PY, cli_env
 
-from sweep.cli import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, command, jsonable, print_json
+from sweep.cli import command, jsonable, print_json
+from sweep.io.exits import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED
 
 # a block bouncing on its corners: ~3800 impacts in 10 s, a JSON of some hundred kB
 BOUNCING = {"body": {"B": 0.1, "H": 0.3}, "contact": {"mu": 10, "e_x": -0.8, "e_y": 0.2},

@@ -218,3 +218,17 @@ def test_a_cell_over_the_budget_is_flagged_and_the_study_goes_on(tmp_path):
     ds = xr.open_dataset(tmp_path / "r.nc")
     assert ds["status"].values.tolist() == [codes.OK, codes.TIME_BUDGET]
     assert ds["outcome"].values.tolist()[1] == codes.FAILED
+
+
+def test_the_command_hands_the_runner_frozen_options():
+    import dataclasses
+
+    from sweep.runner.command import parse_args, run_options
+    from sweep.runner.options import RunOptions
+
+    argv = ["s.yaml", "--quiet", "--chunk-size", "3", "-o", "x.nc"]
+    options = run_options(parse_args(argv))
+    assert options == RunOptions(output="x.nc", quiet=True, chunk_size=3, argv=tuple(argv))
+    assert options.command_line(2) == "python -m sweep.run " + " ".join(argv) + " (2 ranks)"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        options.force = True

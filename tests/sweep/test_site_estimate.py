@@ -355,3 +355,31 @@ def test_command_bad_files_exit_2_with_every_problem(tmp_path):
     no_ensemble.write_text("bodies:\n  - {B: 30 cm, H: 90 cm, overturned: true}\n")
     out = cli([no_ensemble, "-o", tmp_path / "f.png"], cwd=tmp_path, module="sweep.estimate")
     assert out.returncode == 2 and "ensemble: required by -o/--output" in out.stderr
+
+
+def test_a_study_that_does_not_run_to_its_end_is_an_exception(tmp_path, monkeypatch):
+    """The site estimate runs a study with ``launch.run_file`` and gets how it ended as an
+    exception: refused or failed as ``RunFailed``, Ctrl-C as ``KeyboardInterrupt``."""
+    from sweep.runner import launch, mpi
+    from study_helpers import make_study, write_study
+
+    path = write_study(tmp_path / "s.yaml", {**make_study({"amplitude": [1.0]}),
+                                             "output": str(tmp_path / "s.nc")})
+    seen = []
+
+    def ends(error):
+        def run_file(comm, study, options):
+            seen.append((study, options))
+            raise error
+        return run_file
+
+    for error, status in ((launch.Refused(), 2), (mpi.JobFailure("boom"), 1)):
+        monkeypatch.setattr(launch, "run_file", ends(error))
+        with pytest.raises(site_studies.RunFailed, match=f"ended with status {status}$"):
+            site_studies._run_study(path)
+    monkeypatch.setattr(launch, "run_file", ends(KeyboardInterrupt()))
+    with pytest.raises(KeyboardInterrupt):
+        site_studies._run_study(path)
+    study, options = seen[0]
+    assert study == str(path) and options.quiet and not options.force
+    assert options.command_line() == f"python -m sweep.run {path} --quiet"
