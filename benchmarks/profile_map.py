@@ -31,7 +31,7 @@ STUDY = Path(__file__).with_name("sweep_map.yaml")
 
 def map_rows(every):
     """(rows, rec) of every ``every``-th cell of the bench map."""
-    from sweep.io.study_schema import load_study
+    from sweep.runner.cell_checks import load_study
     from sweep.runner import cells
 
     study = load_study(STUDY)

@@ -77,7 +77,7 @@ def _launch(command, cwd):
 
 def kernel_cpu_per_cell(study_path):
     """(kernel CPU [s] of each cell, scene-building CPU [s] per cell, outcome codes)."""
-    from sweep.io.study_schema import load_study
+    from sweep.runner.cell_checks import load_study
     from sweep.runner import cells
 
     study = load_study(study_path)

@@ -173,7 +173,7 @@ def draw_fragility(comm, output):
 
     for name in share(list(FRAGILITY), comm.Get_size())[comm.Get_rank()]:
         study, arguments = FRAGILITY[name]
-        result = load_study(STUDIES / f"{study}.yaml", check_cells=False).output
+        result = load_study(STUDIES / f"{study}.yaml").output
         dataset = result.with_name(f"{name}.nc")
         with contextlib.redirect_stdout(io.StringIO()):  # its table: in the dataset too
             status = fragility([str(result), *arguments, "-o", str(output / f"{name}.png"),
@@ -189,7 +189,7 @@ def open_datasets(names):
 
     from .io.study_schema import load_study
 
-    return {name: xr.open_dataset(load_study(STUDIES / f"{name}.yaml", check_cells=False)
+    return {name: xr.open_dataset(load_study(STUDIES / f"{name}.yaml")
                                   .output) for name in names}
 
 

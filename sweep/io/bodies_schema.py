@@ -50,16 +50,16 @@ from pathlib import Path
 from typing import Annotated, Any, Literal, Optional, Union
 
 import numpy as np
-from pydantic import (Field, StrictBool, StrictFloat, StrictInt, StrictStr, ValidationError,
-                      ValidationInfo, field_validator, model_validator)
+from pydantic import (Field, PrivateAttr, StrictBool, StrictFloat, StrictInt, StrictStr,
+                      ValidationError, ValidationInfo, field_validator, model_validator)
 
 from . import records
 from .files import find_files, named
 from .plausibility import body_doubts, glob_notes, levels_doubt
-from .problems import MISSING, FieldError, FileProblems, Problem, validation_problems, warn
+from .loader import load_file
+from .problems import MISSING, FieldError, Problem, validation_problems, warn
 from .scene_schema import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
                            quantity)
-from .yamlio import read_yaml, top_level_problems
 
 DEFAULT_MU = 0.6  # friction of a body that gives none: stone on stone or concrete
 DEFAULT_PROBABILITIES = (0.05, 0.5, 0.95)
@@ -396,6 +396,25 @@ class BodiesFile(StrictModel):
     bodies: Optional[BodyList] = None
     sites: Optional[Annotated[list[SiteEntry], Field(min_length=1)]] = None
     ensemble: Optional[EnsembleEntry] = None
+    _warnings: tuple = PrivateAttr(())
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _every_problem(cls, data, handler, info):
+        """The fields' problems, then those of the format (:func:`_format_problems`), raised
+        at once; a file without problems keeps the values likely not meant as its
+        ``_warnings``."""
+        errors, checked = [], None
+        try:
+            checked = handler(data)
+        except ValidationError as err:
+            errors = [FieldError(*p) for p in validation_problems(err, _FIELD_NAMES)]
+        errors += [FieldError(*p) for p in _format_problems(data)]
+        if errors:
+            raise FieldError.every(errors)
+        checked._warnings = tuple(_doubts(checked, data, (info.context or {}).get("base_dir")
+                                          or "."))
+        return checked
 
 
 def _format_problems(raw):
@@ -448,6 +467,18 @@ def _levels_doubts(levels, raw):
     return [] if doubt is None else [doubt]
 
 
+def _doubts(checked, raw, base_dir):
+    """The values likely not meant of a checked file: bodies, globs, levels."""
+    entries = ([("bodies", checked.bodies)] if checked.sites is None else
+               [(f"sites[{i}].bodies", s.bodies) for i, s in enumerate(checked.sites)])
+    doubts = [doubt for where, bodies in entries for j, entry in enumerate(bodies)
+              for doubt in body_doubts(entry, f"{where}[{j}]")]
+    if checked.ensemble is not None:
+        doubts += _glob_notes(raw["ensemble"]["motions"], base_dir)
+        doubts += _levels_doubts(checked.ensemble.levels.pga, raw["ensemble"]["levels"]["pga"])
+    return doubts
+
+
 def load_survey(source):
     """Read and check a bodies file (or a dict of the same schema); every problem at once.
 
@@ -468,27 +499,9 @@ def load_survey(source):
         increase, records that cannot be read, ..., each with its dotted path
         (``sites[0].bodies[2].B``, ``ensemble.levels.pga.num``) and the value given.
     """
-    raw = source if isinstance(source, dict) else read_yaml(source)
-    path = None if isinstance(source, dict) else Path(source)
-    top = top_level_problems(raw, [], "bodies file", "sites (or site and bodies), ensemble")
-    if top:
-        raise FileProblems(top, path)
-    problems = _format_problems(raw)
-    try:
-        checked = BodiesFile.model_validate(
-            raw, context={"base_dir": "." if path is None else path.parent})
-    except ValidationError as err:
-        problems = validation_problems(err, _FIELD_NAMES) + problems
-    if problems:
-        raise FileProblems(problems, path)
-    entries = ([("bodies", checked.bodies)] if checked.sites is None else
-               [(f"sites[{i}].bodies", s.bodies) for i, s in enumerate(checked.sites)])
-    doubts = [doubt for where, bodies in entries for j, entry in enumerate(bodies)
-              for doubt in body_doubts(entry, f"{where}[{j}]")]
-    if checked.ensemble is not None:
-        doubts += _glob_notes(raw["ensemble"]["motions"], "." if path is None else path.parent)
-        doubts += _levels_doubts(checked.ensemble.levels.pga, raw["ensemble"]["levels"]["pga"])
-    warn(doubts)
+    checked = load_file(source, BodiesFile, "bodies file",
+                        "sites (or site and bodies), ensemble", _FIELD_NAMES)
+    warn(checked._warnings)
     if checked.sites is None:
         sites = (Site(name=checked.site, bodies=_bodies(checked.bodies)),)
     else:
@@ -497,7 +510,8 @@ def load_survey(source):
                            longitude=None if s.longitude is None else float(s.longitude))
                       for s in checked.sites)
     return Survey(sites=sites, ensemble=None if checked.ensemble is None
-                  else checked.ensemble.resolved(), source=path,
+                  else checked.ensemble.resolved(),
+                  source=None if isinstance(source, dict) else Path(source),
                   one_site_format=checked.sites is None)
 
 

@@ -7,7 +7,7 @@ checked scene and its resolved SI form, each as a
 :class:`~sweep.io.problems.Problem` whose message starts with the value as written
 (``30 (a bare number is in m): a body 30 m wide; did you mean 30 cm?``);
 :func:`~sweep.io.problems.warn` issues them as ``InputWarning`` s, which never stop the work.
-A study reports each once per axis (``sweep.io.study_schema.cell_problems``); a list of
+A study reports each once per axis (``sweep.runner.cell_checks.cell_problems``); a list of
 accelerations (a study's axis, the levels of a bodies file) is doubted as a whole
 (:func:`levels_read_in_si`).
 """

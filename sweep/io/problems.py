@@ -104,8 +104,9 @@ def unknown_key(path, key, value, names):
 class FieldError(ValueError):
     """A check inside a model that blames one ``field`` of it (a cross-field rule).
 
-    ``field`` is a key or a tuple of keys below the model (``("values", 2)``); ``also`` are
-    more ``FieldError`` s found by the same check, reported with it.
+    ``field`` is a key or a tuple of keys below the model (``("values", 2)``), or the dotted
+    path of a problem found by a validator of a whole file (``grid.mu[1]``); ``also`` are more
+    ``FieldError`` s found by the same check, reported with it.
     """
 
     def __init__(self, field, value, message, also=()):
@@ -117,6 +118,13 @@ class FieldError(ValueError):
         """One exception carrying every ``(field, value, message)`` of ``errors``."""
         first, *rest = errors
         return cls(*first, also=[cls(*e) for e in rest])
+
+    @classmethod
+    def every(cls, errors):
+        """One exception carrying every ``FieldError`` of ``errors`` and those they carry, in
+        order (a validator that checks on after a problem, so that all show at once)."""
+        return cls.several([(e.field, e.value, str(e)) for error in errors
+                            for e in (error, *error.also)])
 
 
 def _blamed(path, error):

@@ -17,17 +17,16 @@ from typing import Annotated, Literal, Optional, Union
 
 import numpy as np
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
-                      PlainValidator, ValidationError, ValidationInfo, WithJsonSchema,
-                      field_validator, model_validator)
+                      PlainValidator, ValidationInfo, WithJsonSchema, field_validator,
+                      model_validator)
 
 from kernels.api import DEFAULTS, PackingError, scene_row
 from kernels.codes import LANDING_NAMES
 
 from . import records, units
 from .units import Quantity
-from .problems import (MISSING, FieldError, FileProblems, Problem, join_path,
-                       validation_problems)
-from .yamlio import parse_yaml, read_text, top_level_problems
+from .loader import load_file
+from .problems import MISSING, FieldError, FileProblems, Problem, join_path
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
@@ -479,22 +478,8 @@ def load_scene(source, *, base_dir=None):
         Every syntax error, duplicate key, unknown key, missing value, wrong unit or value out
         of range, each with its dotted path and the value given.
     """
-    if isinstance(source, dict):
-        raw, problems, name = source, [], None
-    else:
-        name = source
-        raw, problems = parse_yaml(read_text(source))
-        base_dir = Path(source).parent if base_dir is None else base_dir
-    top = top_level_problems(raw, problems, "scene", "body, contact")
-    problems += top
-    if raw is not None and not top:
-        try:
-            scene = Scene.model_validate(raw, context={"base_dir": base_dir})
-        except ValidationError as err:
-            problems += validation_problems(err, _FIELD_NAMES, _dotted, KINDS)
-    if problems:
-        raise FileProblems(problems, name)
-    return scene
+    return load_file(source, Scene, "scene", "body, contact", _FIELD_NAMES, base_dir=base_dir,
+                     dotted=_dotted, tags=KINDS, despite_syntax=True)
 
 
 def apply_overrides(raw, overrides):

@@ -5,9 +5,10 @@ fastest), so a cell id is a flat index into the dataset's arrays.  Each cell's s
 study's base scene with the cell's axis values set at their scene paths
 (``sweep.io.vocabulary.AXES``), before validation.  A refine study's *lines* are the
 combinations of the other axes' values (``sweep.runner.refine`` bisects along each); how many
-simulations it may take is counted here.  The study schema checks a study with these (its shape,
-a sample of its cells' scenes) and the datasets (``sweep.cf``) are shaped by them, so they live
-in ``io``; ``sweep.runner.grid`` and ``sweep.runner.refine`` import them under the same names.
+simulations it may take is counted here.  The study schema checks a study's shape with these,
+the runner's cell checks a sample of its cells' scenes, and the datasets (``sweep.cf``) are
+shaped by them, so they live in ``io``; ``sweep.runner.grid`` and ``sweep.runner.refine``
+import them under the same names.
 """
 import math
 

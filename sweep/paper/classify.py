@@ -154,8 +154,7 @@ def classify_history(t, theta, a_x, alpha, t_overturn=None):
 
 def study_of(ds):
     """The study a dataset was run from (``sweep.run`` keeps its text in ``ds.attrs``)."""
-    return load_study(ds.attrs.get("study_file") or "study.yaml", text=ds.attrs["study"],
-                      check_cells=False)
+    return load_study(ds.attrs.get("study_file") or "study.yaml", text=ds.attrs["study"])
 
 
 def simulate_cell(study, index, dt_out=DT_OUT):

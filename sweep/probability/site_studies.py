@@ -178,7 +178,7 @@ def _run_study(path):
     from ..runner import fingerprint, mpi, store
     from ..runner.options import RunOptions
 
-    study = load_study(path, check_cells=False)
+    study = load_study(path)
     stamp = fingerprint.combined(fingerprint.components(study))
     ran = not store.finished_earlier(study.output, stamp)
     if ran:

@@ -23,10 +23,11 @@ from collections import namedtuple
 from contextlib import contextmanager
 
 from .. import cf
+from ..io import study_schema
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
-from ..io.study_schema import load_study
 from . import fingerprint, grid, mpi, refine, store
+from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
 from .progress import Progress
@@ -389,8 +390,8 @@ def _run(comm, path, options, state):
             raise Refused(path)
         return
     if state.study is None:
-        state.study = load_study(plan.source, text=plan.text, output=plan.output,
-                                 check_cells=False, max_cells=None)
+        state.study = study_schema.load_study(plan.source, text=plan.text,
+                                              output=plan.output, max_cells=None)
         if not warm:
             warm_up()  # loads what rank 0 compiled into the cache
     study = state.study

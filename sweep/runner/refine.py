@@ -26,9 +26,9 @@ import numpy as np
 
 from ..cf import BRACKET_NAMES
 from ..io import units
+from ..io.study_axes import Dim
 from ..io.study_grid import (SLACK, dense_simulations, line_shape, max_rounds,  # noqa: F401
                              max_simulations, refined_axis, rounds_needed, wide)
-from ..io.study_schema import Dim
 
 BRACKETED, NEVER_OVERTURNED, OVERTURNED_AT_START, FAILED = 0, 1, 2, 3  # of BRACKET_NAMES
 OVERTURNED, STANDING = 1, 0  # values of the ``overturned`` variable (-1: failed)

@@ -12,7 +12,7 @@ from study_helpers import make_study
 import sweep
 from kernels import codes
 from sweep import cf
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner.cells import CELL_BUDGET, run_chunk
 
 

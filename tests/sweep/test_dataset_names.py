@@ -5,7 +5,7 @@ from study_helpers import make_study
 
 import sweep
 from sweep import cf
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 
 
 def _names(grid, **extra):

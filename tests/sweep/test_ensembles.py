@@ -9,7 +9,7 @@ import yaml
 import sweep
 from sweep.io.problems import FileProblems
 from sweep.io.records import load_record
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.paper import criteria
 
 G = 9.80665

@@ -5,7 +5,7 @@ import xarray as xr
 from study_helpers import cli, make_study, without_run_attrs, write_study
 from test_layers import MODULES, ROOT, imports
 
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner import fingerprint, store
 from sweep.runner.cells import run_chunk
 

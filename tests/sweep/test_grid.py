@@ -4,7 +4,7 @@ import pytest
 from study_helpers import make_study
 
 from sweep.io.scene_schema import load_scene, resolve_scene
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner import grid
 
 G = 9.80665

@@ -14,7 +14,7 @@ from sweep.io import plausibility
 from sweep.io.problems import FileProblems, InputWarning
 from sweep.io.records import RecordError, read_record_file
 from sweep.io.scene_schema import load_scene, resolve_scene
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner import refine
 
 from study_helpers import PY, cli_env

@@ -11,7 +11,7 @@ import sweep
 from sweep.io.bodies_schema import load_survey
 from sweep.io.files import find_files
 from sweep.io.problems import FileProblems, InputWarning
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 
 G = 9.80665
 AT2 = ("PEER NGA STRONG MOTION DATABASE RECORD\nA TEST RECORD\n"

@@ -18,7 +18,7 @@ import sweep
 import sweep.runner.cells
 from sweep import cf
 from sweep.io import units
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.io.problems import FileProblems
 from sweep.run import main
 from sweep.runner import grid, refine, store

@@ -11,7 +11,7 @@ from study_helpers import (PY, cli, cli_env, make_study, slow_study, start, wait
 
 import sweep
 from kernels import codes
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner import store
 from sweep.runner.cells import run_chunk
 

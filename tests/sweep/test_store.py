@@ -8,7 +8,7 @@ from study_helpers import make_study, without_run_attrs
 
 from kernels import codes
 from sweep import cf
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.runner import grid, store
 from sweep.runner.cells import run_chunk
 

@@ -11,7 +11,7 @@ import yaml
 
 from sweep.estimate import load_survey
 from sweep.io.scene_schema import load_scene
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
 FILES = sorted(STUDIES.glob("*.yaml"))

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from study_helpers import cli, make_study
 
-from sweep.io.study_schema import load_study
+from sweep.runner.cell_checks import load_study
 from sweep.io.problems import FileProblems
 
 BAD = """\
@@ -127,13 +127,13 @@ def test_cell_count_limit():
 
 def test_large_grids_checked_by_a_bounded_choice_of_cells():
     """Each value of every axis is checked; the cells are far fewer than the grid's."""
-    from sweep.io import study_schema
+    from sweep.runner import cell_checks
     study = load_study(make_study({"amplitude": {"start": 1, "stop": 2, "num": 3000},
                                    "frequency": [1.0, 2.0, 3.0, -4.0]}), check_cells=False)
-    checked = study_schema._checked_cells(study)
-    n_checked = study_schema.CHECKED_PER_DIM + 4 + study_schema.SAMPLED_CELLS
-    assert study.n_cells > study_schema.CHECK_ALL_CELLS and len(checked) <= n_checked
-    assert [p.path for p in study_schema.cell_problems(study)] == ["grid.frequency[3]"]
+    checked = cell_checks._checked_cells(study)
+    n_checked = cell_checks.CHECKED_PER_DIM + 4 + cell_checks.SAMPLED_CELLS
+    assert study.n_cells > cell_checks.CHECK_ALL_CELLS and len(checked) <= n_checked
+    assert [p.path for p in cell_checks.cell_problems(study)] == ["grid.frequency[3]"]
 
 
 def test_axis_length_and_repeats():
