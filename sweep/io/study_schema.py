@@ -74,7 +74,7 @@ class Study:
         return exc if isinstance(exc, dict) else {}
 
 
-# --- sections -------------------------------------------------------------------------------------
+# --- sections ---------------------------------------------------------------------------------
 
 def _rule(check, message):
     """A validator that keeps a value for which ``check(value)`` holds, else says ``message``."""
