@@ -51,13 +51,13 @@ from typing import Annotated, Any, Literal, Optional, Union
 
 import numpy as np
 from pydantic import (Field, PrivateAttr, StrictBool, StrictFloat, StrictInt, StrictStr,
-                      ValidationError, ValidationInfo, field_validator, model_validator)
+                      ValidationInfo, field_validator, model_validator)
 
 from . import records
 from .files import find_files, named
 from .plausibility import body_doubts, glob_notes, levels_doubt
 from .loader import load_file
-from .problems import MISSING, FieldError, Problem, validation_problems, warn
+from .problems import MISSING, FieldError, Problem, fields_checked, warn
 from .scene_schema import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
                            quantity)
 
@@ -404,11 +404,7 @@ class BodiesFile(StrictModel):
         """The fields' problems, then those of the format (:func:`_format_problems`), raised
         at once; a file without problems keeps the values likely not meant as its
         ``_warnings``."""
-        errors, checked = [], None
-        try:
-            checked = handler(data)
-        except ValidationError as err:
-            errors = [FieldError(*p) for p in validation_problems(err, _FIELD_NAMES)]
+        checked, errors = fields_checked(handler, data, _FIELD_NAMES)
         errors += [FieldError(*p) for p in _format_problems(data)]
         if errors:
             raise FieldError.every(errors)

@@ -16,6 +16,8 @@ import warnings
 from collections import namedtuple
 from contextlib import contextmanager
 
+from pydantic import ValidationError
+
 from .exits import EXIT_BAD_INPUT
 
 Problem = namedtuple("Problem", "path value message")
@@ -181,6 +183,17 @@ def validation_problems(error, names, dotted=None, tags=None):
     dotted = dotted or _joined
     return [problem for e in _unknown_first(error.errors(include_url=False))
             for problem in _from_error(e, dotted(e["loc"]), names, tags)]
+
+
+def fields_checked(validate, data, names):
+    """``(model, errors)``: the model that ``validate`` (``Model.model_validate``, or the
+    handler of a ``mode="wrap"`` model validator) makes of ``data``, or None, and a
+    :class:`FieldError` for each of its problems, at its dotted path, so that a validator can
+    check on and raise them all with its own (:meth:`FieldError.every`)."""
+    try:
+        return validate(data), []
+    except ValidationError as err:
+        return None, [FieldError(*p) for p in validation_problems(err, names)]
 
 
 def _joined(loc):

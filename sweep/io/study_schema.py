@@ -18,12 +18,12 @@ from typing import Annotated, Any, Optional
 
 import numpy as np
 import yaml
-from pydantic import (AfterValidator, BeforeValidator, Field, PrivateAttr, ValidationError,
-                      WithJsonSchema, model_validator)
+from pydantic import (AfterValidator, BeforeValidator, Field, PrivateAttr, WithJsonSchema,
+                      model_validator)
 
 from . import study_grid, units
 from .loader import load_file
-from .problems import MISSING, FieldError, join_path, validation_problems, warn
+from .problems import MISSING, FieldError, fields_checked, join_path, warn
 from .scene_schema import StrictModel
 from .study_axes import (AXIS_LIST, MAX_AXIS_VALUES, Refine, axis, axis_list, dims,
                          fits_scene, known_name, no_conflicts, number, record_glob, refine,
@@ -234,12 +234,9 @@ class StudyFile(StrictModel):
         ``cells(study, doubts=list)`` returning the problems of the cells' scenes.
         """
         context = {**_CONTEXT, **(info.context or {})}
-        errors, checked = [], None
-        try:
-            checked = handler(data)
-        except ValidationError as err:
-            errors += [FieldError(*p) for p in validation_problems(err, _FIELD_NAMES)
-                       if not (context["output"] is not None and p.path == "output")]
+        checked, errors = fields_checked(handler, data, _FIELD_NAMES)
+        if context["output"] is not None:  # it replaces the file's
+            errors = [e for e in errors if e.field != "output"]
         scene = data["scene"] if isinstance(data.get("scene"), dict) else {}
         grid = data["grid"] if isinstance(data.get("grid"), dict) else {}
         axes, notes = {}, []  # notes: what record globs leave out, warned of
@@ -281,12 +278,10 @@ def _written(spec, path):
     """The raw values of an axis (unit strings for numbers of a ``unit``) and its unit: a list,
     or a mapping ``{start, stop, num, spacing, unit}`` or ``{values, unit}``."""
     if isinstance(spec, dict):
-        try:
-            checked = RangeSpec.model_validate(spec)
-        except ValidationError as err:
-            raise FieldError.every([FieldError(join_path(path, p.path) if p.path else path,
-                                               p.value, p.message)
-                                    for p in validation_problems(err, _FIELD_NAMES)]) from None
+        checked, errors = fields_checked(RangeSpec.model_validate, spec, _FIELD_NAMES)
+        if errors:
+            raise FieldError.every([FieldError(join_path(path, e.field) if e.field else path,
+                                               e.value, str(e)) for e in errors])
         unit = checked.unit
         return [f"{v!r} {unit}" if unit and number(v) else v for v in checked.raw_values()], unit
     if axis_list(spec):
