@@ -50,6 +50,9 @@ _SHAPES = {"rectangular": codes.G_PULSE_RECT, "triangular": codes.G_PULSE_TRI}
 _LAWS = {"log": codes.LAW_LOG, "linear": codes.LAW_LINEAR}
 _HOLDS = {"acceleration": codes.HOLD_ACCELERATION, "velocity": codes.HOLD_VELOCITY,
           "displacement": codes.HOLD_DISPLACEMENT}
+# scene and result records whose items are read by field name (``row.body.B``), as in np.recarray
+_SCENE_RECORD = np.dtype((np.record, codes.SCENE_DTYPE))
+_RESULT_RECORD = np.dtype((np.record, codes.RESULT_DTYPE))
 
 
 def _merged(scene, section):
@@ -69,12 +72,12 @@ class PackingError(ValueError):
         self.reason = reason
 
 
-def _number(value, path, positive=False, finite=True):
+def _number(value, path, positive=False):
     try:
         x = float(value)
     except (TypeError, ValueError):
         raise PackingError(path, f"must be a number, got {value!r}") from None
-    if (finite and not np.isfinite(x)) or (positive and not x > 0.0):
+    if not math.isfinite(x) or (positive and not x > 0.0):
         raise PackingError(path, f"must be a {'positive ' if positive else ''}finite "
                                  f"number, got {value!r}")
     return x
@@ -95,9 +98,9 @@ def place_record(samples, records):
     return offset
 
 
-def _pack_ground(g, spec, path, records):
-    """Pack one ground component into the record ``g`` (of ``codes.GROUND_DTYPE``, zeroed);
-    place record samples in ``records`` (``place_record``)."""
+def _ground_fields(spec, path, records):
+    """The fields of one ground component (``codes.GROUND_DTYPE``) that it sets, by name (the
+    others stay zero); record samples are placed in ``records`` (``place_record``)."""
     spec = {**DEFAULTS["ground"], **(spec or {"kind": "none"})}
     kind = spec.get("kind", "none")
     if kind == "pulse":
@@ -105,58 +108,78 @@ def _pack_ground(g, spec, path, records):
         if shape not in _SHAPES:
             raise PackingError(f"{path}.shape", f"must be one of {sorted(_SHAPES)}, "
                                                 f"got {shape!r}")
-        g.kind = _SHAPES[shape]
+        g = {"kind": _SHAPES[shape]}
     elif kind in _KINDS:
-        g.kind = _KINDS[kind]
+        g = {"kind": _KINDS[kind]}
     else:
         raise PackingError(f"{path}.kind", f"must be one of {sorted([*_KINDS, 'pulse'])}, "
                                            f"got {kind!r}")
     if kind == "none":
-        return
+        return g
     duration = spec.get("duration")
-    g.start = _number(spec.get("start", 0.0), f"{path}.start")
-    g.dur = math.inf if duration is None else _number(duration, f"{path}.duration",
-                                                      positive=True)
-    g.phase = _number(spec.get("phase", 0.0), f"{path}.phase")
+    g["start"] = _number(spec.get("start", 0.0), f"{path}.start")
+    g["dur"] = math.inf if duration is None else _number(duration, f"{path}.duration",
+                                                         positive=True)
+    g["phase"] = _number(spec.get("phase", 0.0), f"{path}.phase")
     if kind == "sine":
-        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
-        g.freq = _number(spec["frequency"], f"{path}.frequency", positive=True)
+        g["amp"] = _number(spec["amplitude"], f"{path}.amplitude")
+        g["freq"] = _number(spec["frequency"], f"{path}.frequency", positive=True)
     elif kind == "sweep":
-        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
-        g.f0 = _number(spec["f_start"], f"{path}.f_start", positive=True)
-        g.f1 = _number(spec["f_stop"], f"{path}.f_stop", positive=True)
+        g["amp"] = _number(spec["amplitude"], f"{path}.amplitude")
+        f0 = g["f0"] = _number(spec["f_start"], f"{path}.f_start", positive=True)
+        f1 = g["f1"] = _number(spec["f_stop"], f"{path}.f_stop", positive=True)
         if duration is None:
             raise PackingError(f"{path}.duration", "is required for a sweep")
-        g.law = _LAWS[spec.get("law", "log")]
-        f0, f1, T = g.f0, g.f1, g.dur
-        g.freq = (math.log(f1 / f0) if g.law == codes.LAW_LOG else f1 - f0) / T
-        g.hold = _HOLDS[spec.get("hold", "acceleration")]
+        g["law"] = _LAWS[spec.get("law", "log")]
+        g["freq"] = (math.log(f1 / f0) if g["law"] == codes.LAW_LOG else f1 - f0) / g["dur"]
+        g["hold"] = _HOLDS[spec.get("hold", "acceleration")]
     elif kind == "record":
         samples = np.ascontiguousarray(spec["samples"], dtype=np.float64)
         if samples.ndim != 1:
             samples = samples.ravel()
         if samples.size < 2 or not np.all(np.isfinite(samples)):
             raise PackingError(f"{path}.samples", "must hold at least two finite values")
-        g.amp = _number(spec.get("scale", 1.0), f"{path}.scale")
-        g.rec_dt = _number(spec["dt"], f"{path}.dt", positive=True)
-        g.rec_off = place_record(samples, records)
-        g.rec_n = samples.size
+        g["amp"] = _number(spec.get("scale", 1.0), f"{path}.scale")
+        g["rec_dt"] = _number(spec["dt"], f"{path}.dt", positive=True)
+        g["rec_off"] = place_record(samples, records)
+        g["rec_n"] = samples.size
     else:  # pulse
-        g.amp = _number(spec["amplitude"], f"{path}.amplitude")
+        g["amp"] = _number(spec["amplitude"], f"{path}.amplitude")
         if duration is None:
             raise PackingError(f"{path}.duration", "is required for a pulse")
-
-
-_INITIAL = (("theta", "theta"), ("omega", "omega"), ("x_dot", "u"), ("y_dot", "v"),
-            ("lift", "lift"))                       # resolved key, field of ``initial``
-_SOLVER = (("rtol", "rtol"), ("atol", "atol"), ("dt", "dt"), ("max_step", "max_step"),
-           ("t_end", "t_end"), ("max_steps", "max_steps"), ("max_events", "max_events"),
-           ("theta_overturn", "theta_over"), ("zeno_dt", "zeno_dt"), ("dt_out", "dt_out"))
+    return g
 
 
 def scene_rows(n):
     """n zeroed scene records (``codes.SCENE_DTYPE``), read and written by field name."""
     return np.zeros(n, codes.SCENE_DTYPE).view(np.recarray)
+
+
+def _field_paths(dtype, prefix=""):
+    """Dotted paths of the fields of a structured dtype (``"floor.x.amp"``), in memory order;
+    a TypeError unless the dtype is float64 fields one after the other (then an array of
+    those floats, in that order, is a record of it)."""
+    paths = []
+    for name in dtype.names:
+        if dtype[name].names:
+            paths += _field_paths(dtype[name], f"{prefix}{name}.")
+        elif dtype[name] == np.float64:
+            paths.append(prefix + name)
+    if dtype.itemsize != 8 * len(paths):
+        raise TypeError(f"{dtype} is not float64 fields one after the other")
+    return paths
+
+
+_ZERO_ROW = dict.fromkeys(_field_paths(codes.SCENE_DTYPE), 0.0)  # field path -> value
+# (key of the resolved scene, its path there, the field of the scene record)
+_FRICTION = tuple((key, f"contact.{key}", f"contact.{key}")
+                  for key in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k"))
+_INITIAL = tuple((key, f"initial.{key}", f"initial.{field}") for key, field in (
+    ("theta", "theta"), ("omega", "omega"), ("x_dot", "u"), ("y_dot", "v"), ("lift", "lift")))
+_SOLVER = tuple((key, f"solver.{key}", f"solver.{field}") for key, field in (
+    ("rtol", "rtol"), ("atol", "atol"), ("dt", "dt"), ("max_step", "max_step"),
+    ("t_end", "t_end"), ("max_steps", "max_steps"), ("max_events", "max_events"),
+    ("theta_overturn", "theta_over"), ("zeno_dt", "zeno_dt"), ("dt_out", "dt_out")))
 
 
 def scene_row(scene, records=None):
@@ -177,40 +200,38 @@ def scene_row(scene, records=None):
     initial = _merged(scene, "initial")
     solver = _merged(scene, "solver")
     excitation = scene.get("excitation") or {}
-    row = scene_rows(1)[0]
-    B = _number(body.get("B"), "body.B", positive=True)
-    H = _number(body.get("H"), "body.H", positive=True)
+    row = dict(_ZERO_ROW)
+    B = row["body.B"] = _number(body.get("B"), "body.B", positive=True)
+    H = row["body.H"] = _number(body.get("H"), "body.H", positive=True)
     b, h = B / 2, H / 2
     i_g = body.get("i_g")
-    row.body.B, row.body.H = B, H
-    row.body.i2 = (b * b + h * h) / 3 if i_g is None else \
+    row["body.i2"] = (b * b + h * h) / 3 if i_g is None else \
         _number(i_g, "body.i_g", positive=True) ** 2
-    c = row.contact
-    for key in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k"):
-        value = _number(contact[key], f"contact.{key}")
+    for key, path, field in _FRICTION:
+        value = row[field] = _number(contact[key], path)
         if value < 0:
-            raise PackingError(f"contact.{key}", f"must be >= 0, got {contact[key]!r}")
-        setattr(c, key, value)
-    c.e_x = _number(contact["e_x"], "contact.e_x")
-    c.e_y = _number(contact["e_y"], "contact.e_y")
-    if not -1 <= c.e_x <= 1 or not 0 <= c.e_y <= 1:
+            raise PackingError(path, f"must be >= 0, got {contact[key]!r}")
+    e_x = row["contact.e_x"] = _number(contact["e_x"], "contact.e_x")
+    e_y = row["contact.e_y"] = _number(contact["e_y"], "contact.e_y")
+    if not -1 <= e_x <= 1 or not 0 <= e_y <= 1:
         raise PackingError("contact.e_x", "must lie in [-1, 1] and `contact.e_y` in [0, 1]")
     if contact["landing"] not in codes.LANDING_NAMES:
         raise PackingError("contact.landing", f"must be one of {codes.LANDING_NAMES}, "
                                               f"got {contact['landing']!r}")
-    c.landing = codes.LANDING_NAMES.index(contact["landing"])
-    for key, field in _INITIAL:
-        setattr(row.initial, field, _number(initial[key], f"initial.{key}"))
+    row["contact.landing"] = codes.LANDING_NAMES.index(contact["landing"])
+    for key, path, field in _INITIAL:
+        row[field] = _number(initial[key], path)
     method = solver["method"]
     if method not in codes.METHOD_NAMES:
         raise PackingError("solver.method", f"must be one of {codes.METHOD_NAMES}, "
                                             f"got {method!r}")
-    row.solver.method = codes.METHOD_NAMES.index(method)
-    for key, field in _SOLVER:
-        setattr(row.solver, field, _number(solver[key], f"solver.{key}", positive=True))
-    _pack_ground(row.floor.x, excitation.get("horizontal"), "excitation.horizontal", records)
-    _pack_ground(row.floor.y, excitation.get("vertical"), "excitation.vertical", records)
-    return row
+    row["solver.method"] = codes.METHOD_NAMES.index(method)
+    for key, path, field in _SOLVER:
+        row[field] = _number(solver[key], path, positive=True)
+    for axis, component in (("x", "horizontal"), ("y", "vertical")):
+        ground = _ground_fields(excitation.get(component), f"excitation.{component}", records)
+        row.update({f"floor.{axis}.{name}": value for name, value in ground.items()})
+    return np.frombuffer(np.fromiter(row.values(), np.float64), _SCENE_RECORD)[0]
 
 
 def as_records(rows):
@@ -245,7 +266,7 @@ included."""
 
 
 def _nan_to_none(x):
-    return None if not np.isfinite(x) else float(x)
+    return x if math.isfinite(x) else None
 
 
 def _message(status, impacts, logged, clamps):
@@ -294,7 +315,7 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     records = []
     row = scene_row(scene, records)
     rec = record_buffer(records)
-    res = np.zeros(1, codes.RESULT_DTYPE).view(np.recarray)[0]
+    res = np.zeros(1, _RESULT_RECORD)[0]
     log = np.empty((max_log, codes.N_LOG))  # rows [:n_log] are written
     n_hist = int(row.solver.t_end / row.solver.dt_out) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
@@ -303,27 +324,25 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     t0 = time.process_time()
     n_log, n_h = run(*args)
     cpu = time.process_time() - t0
-    status = int(res.status)
+    out = dict(zip(codes.RESULT_DTYPE.names, res.item()))  # Python numbers, by field name
+    status, impacts, clamps = out["status"], out["impacts"], out["energy_clamps"]
     overturned = status == codes.OVERTURNED
-    impacts, clamps = int(res.impacts), int(res.energy_clamps)
+    slipped = log[:n_log, codes.LOG_FLAGS].astype(np.int64) & codes.SLIPPED
     return SceneResult(
         status=codes.STATUS_NAMES[status], message=_message(status, impacts, n_log, clamps),
-        overturned=overturned, t_overturn=_nan_to_none(res.t_overturn),
-        overturn_direction=int(res.direction) if overturned else None,
+        overturned=overturned, t_overturn=_nan_to_none(out["t_overturn"]),
+        overturn_direction=out["direction"] if overturned else None,
         impact_times=log[:n_log, codes.LOG_T].tolist(),
         omega_after=log[:n_log, codes.LOG_OMEGA].tolist(),
-        impact_slipped=[bool(int(f) & codes.SLIPPED) for f in log[:n_log, codes.LOG_FLAGS]],
+        impact_slipped=slipped.astype(bool).tolist(),
         impact_count=impacts, impact_log_truncated=n_log < impacts,
-        max_abs_theta=float(res.max_abs_theta),
-        t_rest=_nan_to_none(res.t_rest),
-        mode_time={name: float(res.mode_time[m]) for m, name in enumerate(codes.MODE_NAMES)},
-        max_slip=float(res.max_slip), max_travel=float(res.max_travel),
-        max_lift=float(res.max_lift),
-        steps=int(res.steps), events=int(res.events),
-        energy_clamps=clamps, t_final=float(res.t_end),
-        f_at_overturn=_nan_to_none(res.f_at_overturn),
-        a_at_overturn=_nan_to_none(res.a_at_overturn),
-        v_at_overturn=_nan_to_none(res.v_at_overturn),
+        max_abs_theta=out["max_abs_theta"], t_rest=_nan_to_none(out["t_rest"]),
+        mode_time=dict(zip(codes.MODE_NAMES, out["mode_time"].tolist())),
+        max_slip=out["max_slip"], max_travel=out["max_travel"], max_lift=out["max_lift"],
+        steps=out["steps"], events=out["events"], energy_clamps=clamps, t_final=out["t_end"],
+        f_at_overturn=_nan_to_none(out["f_at_overturn"]),
+        a_at_overturn=_nan_to_none(out["a_at_overturn"]),
+        v_at_overturn=_nan_to_none(out["v_at_overturn"]),
         cpu_s=cpu,
         history={name: hist[:n_h, j].copy() for j, name in enumerate(codes.HISTORY_NAMES)}
         if history else None)

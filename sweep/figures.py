@@ -4,16 +4,17 @@
 
 The ranks stay together from the first figure to the last, so start-up, imports and the
 kernel load are paid once: they draw the scenes of Figs 3-5 (``studies/fig0[345][a-g]_*.yaml``,
-into ``FIGURES/scenes``), run every study of ``PLAN`` one after the other (``sweep.run``, so
-each dataset is the one ``python -m sweep.run STUDY --force`` writes into ``results/``),
-classify the overturnings of the sweeps of Fig. 11 once for Figs 11-16
-(``sweep.paper.classify``), and draw the figures (``sweep.plot``).  Scenes, classifications
-and figures are shared out among the ranks.  A line per stage on stderr says how long it took.
+into ``FIGURES/scenes``), run every study of ``PLAN`` one after the other
+(``runner.launch.run_file``, so each dataset is the one ``python -m sweep.run STUDY --force``
+writes into ``results/``), classify the overturnings of the sweeps of Fig. 11 once for Figs
+11-16 (``sweep.paper.classify``), draw the figures (``sweep.plot``) and fit and draw the
+fragilities of ``FRAGILITY`` (``sweep.probability.fragility``, as ``python -m
+sweep.fragility`` does).  Scenes, classifications and figures are shared out among the ranks.
+A line per stage on stderr says how long it took.
 """
-import contextlib
-import io
 import sys
 import time
+from collections import namedtuple
 from pathlib import Path
 
 from .cli import argument_parser, command
@@ -49,14 +50,16 @@ PLAN = {
     "fig05_landing_map": ("landing", ("fig05_landing_map",)),
     "fig05_landing_speeds": ("landing", ("fig05_landing_speeds",)),
 }
-# Fragility figures (python -m sweep.fragility): output name -> (study, its arguments)
+Fragility = namedtuple("Fragility", "study over im kind")
+Fragility.__doc__ = """A fragility figure: of the dataset of ``study``, members over the
+dimensions ``over``, intensity measure ``im``, figure ``kind`` (``plots.fragility.figure``)."""
+# Fragility figures and their datasets (results/<output name>.nc): output name -> Fragility
 FRAGILITY = {
-    "fragility_records_pga": ("fragility_records", ("--over", "record", "--im", "pga")),
-    "fragility_synthetic_pga": ("fragility_synthetic", ("--over", "seed", "--im", "pga")),
-    "fragility_synthetic_map": ("fragility_synthetic", ("--over", "seed", "--over",
-                                                         "magnitude", "--im", "pga",
-                                                         "--kind", "map")),
-    "fragility_synthetic_pgv": ("fragility_synthetic", ("--over", "seed", "--im", "pgv")),
+    "fragility_records_pga": Fragility("fragility_records", ("record",), "pga", "curves"),
+    "fragility_synthetic_pga": Fragility("fragility_synthetic", ("seed",), "pga", "curves"),
+    "fragility_synthetic_map": Fragility("fragility_synthetic", ("seed", "magnitude"), "pga",
+                                         "map"),
+    "fragility_synthetic_pgv": Fragility("fragility_synthetic", ("seed",), "pgv", "curves"),
 }
 CLASSIFIED = PLAN["fig11"][1]  # the sweeps whose overturnings Figs 11-16 classify
 
@@ -64,7 +67,7 @@ CLASSIFIED = PLAN["fig11"][1]  # the sweeps whose overturnings Figs 11-16 classi
 def studies():
     """The studies of ``PLAN`` and ``FRAGILITY``, each once, in order of first use."""
     return list(dict.fromkeys([*(name for _, names in PLAN.values() for name in names),
-                               *(name for name, _ in FRAGILITY.values())]))
+                               *(f.study for f in FRAGILITY.values())]))
 
 
 def share(tasks, size, cost=None):
@@ -118,12 +121,16 @@ def draw_scenes(comm, output):
     return len(paths)
 
 
-def run_studies(names):
-    """Every study on every rank, one after the other; the first nonzero exit status, or 0."""
-    from .run import main as run
+def run_studies(comm, names):
+    """Every study on every rank, one after the other, as ``python -m sweep.run STUDY --force
+    --quiet`` runs it; the first nonzero exit status, or 0."""
+    from .runner.launch import run_status
+    from .runner.options import RunOptions
 
     for name in names:
-        status = run([str(STUDIES / f"{name}.yaml"), "--force", "--quiet"])
+        path = str(STUDIES / f"{name}.yaml")
+        status = run_status(comm, path, RunOptions(force=True, quiet=True,
+                                                   argv=(path, "--force", "--quiet")))
         if status:
             return status
     return EXIT_OK
@@ -166,21 +173,39 @@ def draw_figures(comm, datasets, known, output):
 
 
 def draw_fragility(comm, output):
-    """This rank's share of the fragility figures of ``FRAGILITY`` (and their datasets,
-    ``results/<figure name>.nc``, written as ``python -m sweep.fragility`` does)."""
-    from .fragility import main as fragility
+    """This rank's share of the fragility figures of ``FRAGILITY`` and their datasets,
+    ``results/<figure name>.nc``, as ``python -m sweep.fragility`` writes them."""
+    import matplotlib.pyplot as plt
+    import xarray as xr
+
     from .io.study_schema import load_study
+    from .plots.fragility import figure as fragility_figure
+    from .plots.style import save_figure
+    from .probability.fragility import default_levels, fragility
+    from .runner.store import write_netcdf
 
     for name in share(list(FRAGILITY), comm.Get_size())[comm.Get_rank()]:
-        study, arguments = FRAGILITY[name]
-        result = load_study(STUDIES / f"{study}.yaml").output
-        dataset = result.with_name(f"{name}.nc")
-        with contextlib.redirect_stdout(io.StringIO()):  # its table: in the dataset too
-            status = fragility([str(result), *arguments, "-o", str(output / f"{name}.png"),
-                                "--dataset", str(dataset)])
-        if status:
-            return status
-    return EXIT_OK
+        wanted = FRAGILITY[name]
+        result = load_study(STUDIES / f"{wanted.study}.yaml").output
+        dataset, figure = result.with_name(f"{name}.nc"), output / f"{name}.png"
+        with xr.open_dataset(result) as opened:
+            ds = opened.load()
+        levels = default_levels(ds, wanted.over)
+        frag = fragility(ds, wanted.over, wanted.im, levels, source=str(result),
+                         history=_fragility_command(wanted, result, figure, dataset))
+        write_netcdf(frag, dataset)
+        fig = fragility_figure(wanted.kind, frag, ds, wanted.over, wanted.im, levels)
+        save_figure(fig, figure)
+        plt.close(fig)
+
+
+def _fragility_command(wanted, result, figure, dataset):
+    """The ``python -m sweep.fragility`` command line that writes the same dataset and figure:
+    the history of the dataset."""
+    over = [word for dim in wanted.over for word in ("--over", dim)]
+    kind = ["--kind", wanted.kind] if wanted.kind != "curves" else []
+    return " ".join(["python -m sweep.fragility", str(result), *over, "--im", wanted.im, *kind,
+                     "-o", str(figure), "--dataset", str(dataset)])
 
 
 def open_datasets(names):
@@ -211,7 +236,7 @@ def main(argv=None):
         mpi.barrier(comm)
         stages.done(f"{n} scenes of Figs 3-5 drawn")
         names = studies()
-        status = run_studies(names)
+        status = run_studies(comm, names)
         if status:
             return status
         stages.done(f"{len(names)} studies run")
@@ -223,9 +248,7 @@ def main(argv=None):
             ds.close()
         mpi.barrier(comm)
         stages.done(f"{len(PLAN)} figures drawn")
-        status = draw_fragility(comm, output)
-        if status:
-            return status
+        draw_fragility(comm, output)
         mpi.barrier(comm)
         stages.done(f"{len(FRAGILITY)} fragility figures drawn")
         stages.total(output)

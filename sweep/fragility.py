@@ -130,16 +130,10 @@ def _draw(frag, ds, args, levels):
     import matplotlib
 
     matplotlib.use("Agg")  # files only: no window, whatever the user's default backend
-    from .plots.fragility import figure_curves, figure_map
+    from .plots.fragility import figure
     from .plots.style import save_figure
-    from .probability.fragility import cells
 
-    if args.kind == "map":
-        pga, pgv = (cells(ds, args.over, name, levels).im for name in ("pga", "pgv"))
-        fig = figure_map(frag, pga, pgv, cells(ds, args.over, args.im, levels).outcome)
-    else:
-        fig = figure_curves(frag)
-    save_figure(fig, Path(args.output))
+    save_figure(figure(args.kind, frag, ds, args.over, args.im, levels), Path(args.output))
 
 
 def summary(frag, dataset_path=None, figure=None):

@@ -14,6 +14,8 @@ accelerations (a study's axis, the levels of a bodies file) is doubted as a whol
 import math
 from pathlib import Path
 
+from pydantic import BaseModel
+
 from ..bodies import G
 from . import units
 from .files import named
@@ -84,13 +86,16 @@ def _g_doubt(path, q):
 
 
 def _quantities(model, path=""):
-    """``(dotted path, Quantity)`` of every quantity of a checked scene, sections included."""
-    for key in type(model).model_fields:
-        value, where = getattr(model, key), f"{path}.{key}" if path else key
+    """``[(dotted path, Quantity)]`` of every quantity of a checked scene, sections included,
+    in the order of the fields."""
+    found = []
+    for key, value in model.__dict__.items():  # the field values, in field order
+        where = f"{path}.{key}" if path else key
         if isinstance(value, units.Quantity):
-            yield where, value
-        elif hasattr(type(value), "model_fields"):
-            yield from _quantities(value, where)
+            found.append((where, value))
+        elif isinstance(value, BaseModel):
+            found += _quantities(value, where)
+    return found
 
 
 def _written(q):

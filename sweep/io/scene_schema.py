@@ -379,11 +379,11 @@ class Excitation(StrictModel):
     def _scale_with_a_scaled_horizontal(self):
         """``scale_with`` is the vertical's, and needs a horizontal record or synthetic
         motion, which has a scale factor."""
-        if getattr(self.horizontal, "scale_with", None) is not None:
+        if isinstance(self.horizontal, _Scaled) and self.horizontal.scale_with is not None:
             raise FieldError(("horizontal", "scale_with"), self.horizontal.scale_with,
                               "only the vertical component can take the horizontal's scale")
         kind = self.horizontal.kind
-        if getattr(self.vertical, "scale_with", None) is not None and \
+        if isinstance(self.vertical, _Scaled) and self.vertical.scale_with is not None and \
                 kind not in ("record", "synthetic"):
             raise FieldError(("vertical", "scale_with"), self.vertical.scale_with,
                               f"the horizontal component is of kind {kind}: only a record or "

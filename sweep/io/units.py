@@ -163,24 +163,36 @@ def parse_quantity(raw, dimension):
     if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
         raise ValueError("expected a number or a string '<number> <unit>'")
     if isinstance(raw, str):
-        match = _PATTERN.match(raw)
-        if match is None:
-            raise ValueError("expected a number or a string '<number> <unit>', e.g. "
-                             f"'{_EXAMPLES[allowed[0]]}'")
-        value, unit = float(match.group(1)), _normalize(match.group(2) or "")
-    else:
-        value, unit = _float(raw), ""
+        return _parse_text(raw, allowed)
+    return _quantity(_float(raw), "", allowed)
+
+
+@functools.lru_cache(maxsize=1024)
+def _parse_text(raw, allowed):
+    """:func:`parse_quantity` of a string (cached: the cells of a study and the scenes of a
+    loop repeat theirs)."""
+    match = _PATTERN.match(raw)
+    if match is None:
+        raise ValueError("expected a number or a string '<number> <unit>', e.g. "
+                         f"'{_EXAMPLES[allowed[0]]}'")
+    return _quantity(float(match.group(1)), match.group(2) or "", allowed)
+
+
+def _quantity(value, written, allowed):
+    """The :class:`Quantity` of ``value`` in the unit ``written`` ("": none, SI), checked
+    against the ``allowed`` dimensions."""
     if not math.isfinite(value):
         raise ValueError("must be a finite number")
+    unit = _normalize(written)
     if not unit:
         return Quantity(value, "", allowed[0])
     found = _FIXED[unit][0] if unit in _FIXED else _RELATIVE.get(unit)
     if found is None:
         names = ", ".join(n for d in allowed for n in units_of(d))
-        raise ValueError(f"unknown unit '{match.group(2)}' for {_either(allowed)}; use one of: "
+        raise ValueError(f"unknown unit '{written}' for {_either(allowed)}; use one of: "
                          f"{names}")
     if found not in allowed:
-        raise ValueError(f"'{match.group(2)}' is a unit of {found.replace('_', ' ')}, "
+        raise ValueError(f"'{written}' is a unit of {found.replace('_', ' ')}, "
                          f"expected {_either(allowed)}")
     return Quantity(value, unit, found)
 

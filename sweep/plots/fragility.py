@@ -5,7 +5,8 @@ with its confidence interval, and the fitted lognormal with its pointwise confid
 against the intensity measure on a log axis (PGA in m/s² with g on top, PGV in cm/s).
 ``figure_map``: per group, the two-parameter fragility Φ(b0 + b1 ln PGA + b2 ln PGV) as
 filled contours over (PGA, PGV) with the 0.1, 0.5 and 0.9 lines labelled, and the cells as
-markers, overturned or standing.
+markers, overturned or standing.  ``figure`` draws the one of a kind (``"curves"``,
+``"map"``), as ``python -m sweep.fragility -o`` and ``python -m sweep.figures`` do.
 
 Both are titled in two lines at most (the study and what is drawn; the ensemble and the
 methods), their labels wrapped to their axes; their legends lie outside the panels, under
@@ -21,7 +22,7 @@ from matplotlib.patches import Patch
 from kernels import codes
 
 from ..bodies import G
-from ..probability.fragility import describe_group, group_coords, group_indices
+from ..probability.fragility import cells, describe_group, group_coords, group_indices
 from .style import fit_suptitle, fit_texts, legend_columns, plain_log_axis
 
 MAX_PANELS = 12  # more groups than this: this many, evenly spread over them
@@ -74,6 +75,16 @@ def _interval_text(value, lower, upper, unit=""):
     """"6.57 m/s² [5.94, 7.28]"."""
     unit = f" {unit}" if unit else ""
     return f"{value:.3g}{unit} [{lower:.3g}, {upper:.3g}]"
+
+
+def figure(kind, frag, ds, over, im, levels):
+    """The fragility figure of ``kind`` of ``frag``: ``"curves"`` (:func:`figure_curves`) or
+    ``"map"`` (:func:`figure_map`, the cells of the study dataset ``ds``, as
+    ``sweep.probability.fragility.fragility(ds, over, im, levels)`` takes them)."""
+    if kind == "map":
+        pga, pgv = (cells(ds, over, name, levels).im for name in ("pga", "pgv"))
+        return figure_map(frag, pga, pgv, cells(ds, over, im, levels).outcome)
+    return figure_curves(frag)
 
 
 def figure_curves(frag):

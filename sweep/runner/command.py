@@ -2,13 +2,13 @@
 
 :func:`main` parses the arguments into a :class:`RunOptions` (:func:`run_options`), takes the
 communicator (``runner.mpi``) and hands over to ``runner.launch.run_file``, which plans, deals,
-computes and merges; how that ends becomes the exit status (``io.exits``).
+computes and merges; how that ends becomes the exit status (``launch.run_status``).
 """
 import math
 import sys
 
 from ..cli import argument_parser, checked_type, command, positive_int
-from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
+from ..io.exits import EXIT_BAD_INPUT
 from ..io.study_schema import MAX_CELLS
 from . import grid, mpi
 from .cells import CELL_BUDGET
@@ -72,12 +72,4 @@ def main(argv=None):
     if comm is None:
         return EXIT_BAD_INPUT
     from . import launch  # the study machinery once the communicator stands
-    try:
-        launch.run_file(comm, args.study, run_options(args))
-    except launch.Refused:  # said by rank 0
-        return EXIT_BAD_INPUT
-    except KeyboardInterrupt:  # rank 0 said what is saved
-        return EXIT_INTERRUPTED
-    except mpi.JobFailure:  # one process: said in words (several ranks abort instead)
-        return EXIT_FAILED
-    return EXIT_OK
+    return launch.run_status(comm, args.study, run_options(args))

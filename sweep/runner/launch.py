@@ -9,9 +9,10 @@ one per bisection step for a study with ``refine:`` (``runner.refine``); rank 0 
 round's chunks, every rank computes and writes its parts, rank 0 checks every part against the
 manifest and merges them.  :func:`run_file` is what ``python -m sweep.run`` and the site
 estimate run; it ends by raising: :class:`Refused`, ``KeyboardInterrupt`` after Ctrl-C (with
-one line saying what is saved) or ``mpi.JobFailure``.  :func:`run_study` runs the same rounds
-in one process with the serial communicator, keeps the results in memory and returns the
-Dataset (``sweep.run_study`` in a notebook).
+one line saying what is saved) or ``mpi.JobFailure``; :func:`run_status` turns that into an
+exit status.  :func:`run_study` runs the same rounds in one process with the serial
+communicator, keeps the results in memory and returns the Dataset (``sweep.run_study`` in a
+notebook).
 """
 import functools
 import signal
@@ -24,6 +25,7 @@ from contextlib import contextmanager
 
 from .. import cf
 from ..io import study_schema
+from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
 from . import fingerprint, grid, mpi, refine, store
@@ -352,6 +354,20 @@ def run_file(comm, path, options):
         raise
     if ended is not None:
         raise ended
+
+
+def run_status(comm, path, options):
+    """:func:`run_file`, and the exit status (``io.exits``) of how it ended: what
+    ``python -m sweep.run`` and ``python -m sweep.figures`` return."""
+    try:
+        run_file(comm, path, options)
+    except Refused:  # said by rank 0
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:  # rank 0 said what is saved
+        return EXIT_INTERRUPTED
+    except mpi.JobFailure:  # one process: said in words (several ranks abort instead)
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def _run_file(comm, path, options):
