@@ -138,9 +138,9 @@ class Contact(StrictModel):
         None, description="normal restitution (0 with enough friction: Housner's impact)")
     landing: Literal[LANDING_NAMES] = Field(
         DEFAULTS["contact"]["landing"], description="law of a landing after a translation "
-        "jump: flat (two-contact impulse), face_friction (one contact at the middle of the "
-        "base: its friction turns the body), corner (the leading corner first); "
-        "docs/landing.md")
+        "jump: face_friction (one contact at the middle of the base: its friction turns the "
+        "body; the paper's Fig. 5), flat (two-contact impulse), corner (the leading corner "
+        "first); docs/landing.md")
 
 
 class _Ground(StrictModel):
