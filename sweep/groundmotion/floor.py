@@ -16,6 +16,9 @@ at rest when the ground starts.
 * A sine is solved in closed form (steady state plus the free vibration that starts the
   building from rest, Chopra 2017 section 3.2), evaluated on a grid fine enough
   (``SAMPLES_PER_PERIOD``) to be read linearly.
+* A sweep or a pulse is sampled on such a grid as the kernel applies it
+  (``kernels.ground.component``) and integrated exactly as piecewise linear: exact at the
+  samples up to the linear reading of the ground between them, O((omega dt)^2).
 
 Default modes (``shear_beam_modes``): those of a uniform shear beam fixed at its base,
 phi_n(z) = sin((2n - 1) pi z/2H), T_n = T_1/(2n - 1), Gamma_n = 4/((2n - 1) pi), so that the
@@ -33,7 +36,9 @@ from functools import lru_cache
 
 import numpy as np
 
+from kernels import api
 from kernels._jit import jit
+from kernels.ground import component
 
 from .record import Record
 
@@ -193,3 +198,30 @@ def floor_of_sine(frequency, phase, duration, span, modes):
     return _record(f"floor over a {frequency:g} Hz sine", dt,
                    sine_response(times, frequency, phase, duration, modes),
                    f"floor of a linear building {modes} over a sine (closed form)")
+
+
+@jit
+def _sampled(g, rec, dt, n):
+    """The ground component ``g`` (``codes.GROUND_DTYPE``) at the times k dt, k < n."""
+    out = np.empty(n)
+    for k in range(n):
+        out[k] = component(k * dt, g, rec)
+    return out
+
+
+@lru_cache(maxsize=64)
+def floor_of_motion(spec, modes):
+    """The floor's :class:`Record` over a resolved sweep or pulse (kernels/api.py) given as
+    the sorted ``(key, value)`` pairs of its dict at amplitude 1 and start 0, sampled
+    ``SAMPLES_PER_PERIOD`` times per period of its highest frequency (a pulse: per its length)
+    or of the shortest mode, over its duration and the ring-down."""
+    ground = dict(spec)
+    periods = ([1.0 / ground["f_start"], 1.0 / ground["f_stop"]] if ground["kind"] == "sweep"
+               else [ground["duration"]]) + [m.period for m in _flexible(modes)]
+    dt = min(periods) / SAMPLES_PER_PERIOD
+    row = api.scene_row({"body": {"B": 1.0, "H": 1.0}, "excitation": {"horizontal": ground}})
+    n = math.ceil((ground["duration"] + decay_time(modes)) / dt) + 1
+    samples = _sampled(row.floor.x, np.zeros(1), dt, n)
+    return _record(f"floor over a {ground['kind']}", dt, record_response(samples, dt, modes),
+                   f"floor of a linear building {modes} over a {ground['kind']} (sampled, "
+                   "Nigam & Jennings 1969)")

@@ -1,14 +1,16 @@
 """A floor of a scene (``kind: floor``) resolved into the record the kernel reads.
 
 The building's modes (``sweep.groundmotion.floor``) filter the resolved ground: a record or a
-synthetic motion through the exact recursion, a sine through its closed form, each computed
+synthetic motion through the exact recursion, a sine through its closed form, a sweep or a
+pulse sampled finely through the recursion, each computed
 once per ground and building at scale 1 (the building is linear), so the record's ``scale`` is
 the ground's scale or the sine's amplitude.  The floor starts with its ground and rings down
 after it (docs/floors.md).
 """
 import math
 
-from ..groundmotion.floor import Mode, floor_of_record, floor_of_sine, shear_beam_modes
+from ..groundmotion.floor import (Mode, floor_of_motion, floor_of_record, floor_of_sine,
+                                  shear_beam_modes)
 
 
 def modes(building):
@@ -31,6 +33,11 @@ def resolve_floor(building, ground, t_end):
         duration = math.inf if ground["duration"] is None else ground["duration"]
         source = floor_of_sine(ground["frequency"], ground["phase"], duration,
                                max(t_end - ground["start"], 0.0), found)
+        scale = ground["amplitude"]
+    elif ground["kind"] in ("sweep", "pulse"):
+        unit = {key: value for key, value in ground.items() if key != "amplitude"}
+        source = floor_of_motion(tuple(sorted({**unit, "amplitude": 1.0, "start": 0.0}.items())),
+                                 found)
         scale = ground["amplitude"]
     else:
         source = floor_of_record(ground["source"], found, ground["duration"])

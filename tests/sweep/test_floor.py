@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from sweep.groundmotion.floor import (Mode, floor_of_record, floor_of_sine, record_response,
-                                      shear_beam_modes, sine_response)
+from sweep.groundmotion.floor import (Mode, floor_of_motion, floor_of_record, floor_of_sine,
+                                      record_response, shear_beam_modes, sine_response)
 from sweep.io.problems import FileProblems
 from sweep.io.scene_schema import load_scene, resolve_scene
 
@@ -74,6 +74,37 @@ def test_record_matches_the_sine_closed_form():
     exact = sine_response(t, 2.5, 0.4, math.inf, modes)
     floor = record_response(np.sin(2 * math.pi * 2.5 * t + 0.4), dt, modes)
     assert np.max(np.abs(floor - exact)) < 1e-6
+
+
+def _spec(**ground):
+    return tuple(sorted({"start": 0.0, "amplitude": 1.0, "phase": 0.0, **ground}.items()))
+
+
+def test_sweep_at_one_frequency_is_the_sine():
+    """A sweep from 2 Hz to 2 Hz (whole cycles, no jump at its end) through the sampled path is
+    the sine's closed form to the linear reading of 100 samples per period: (2 pi/100)^2/12
+    = 3.3e-4 of the floor's peak (measured 3.1e-4)."""
+    modes = shear_beam_modes(0.6, 0.05, 1.0)
+    spec = _spec(kind="sweep", hold="acceleration", f_start=2.0, f_stop=2.0, duration=6.0,
+                 law="log")
+    rec = floor_of_motion(spec, modes)
+    t = rec.dt * np.arange(rec.samples.size)
+    exact = sine_response(t, 2.0, 0.0, 6.0, modes)
+    assert np.max(np.abs(rec.samples - exact)) < (2 * math.pi / 100) ** 2 / 12 * np.max(exact)
+    assert rec.samples.size * rec.dt > 6.0 + math.log(100) / (0.05 * 2 * math.pi / 0.6)
+
+
+def test_triangular_pulse_matches_lsim():
+    """A triangular pulse is piecewise linear: its floor is exact at the samples (lsim)."""
+    modes = (Mode(0.4, 0.05, 1.0),)
+    rec = floor_of_motion(_spec(kind="pulse", shape="triangular", duration=0.5), modes)
+    t = rec.dt * np.arange(rec.samples.size)
+    ground = np.clip(1.0 - np.abs(2.0 * t / 0.5 - 1.0), 0.0, None)
+    w = 2 * math.pi / 0.4
+    system = signal.StateSpace([[0, 1], [-w * w, -0.1 * w]], [[0], [-1]], [[-w * w, -0.1 * w]],
+                               [[0]])
+    expected = signal.lsim(system, ground, t)[1]
+    assert np.max(np.abs(rec.samples - expected)) < 1e-9
 
 
 def test_rigid_building_gives_the_ground():
