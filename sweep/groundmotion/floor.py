@@ -4,7 +4,7 @@ Each mode n of the building (period T_n, damping ratio zeta_n, participation Gam
 the floor) is a single-degree-of-freedom oscillator driven by the ground,
 u_n'' + 2 zeta_n omega_n u_n' + omega_n^2 u_n = -a_g, and the floor moves with
 
-    a_f = a_g + sum_n Gamma_n phi_n u_n''                          (Chopra 2017, Eq. 13.2.4)
+    a_f = a_g + sum_n Gamma_n phi_n u_n''                          (docs/floors.md (F1))
 
 (u_n'' relative to the ground).  A mode of period 0 is rigid: u_n'' = 0.  The building starts
 at rest when the ground starts.
@@ -23,7 +23,7 @@ at rest when the ground starts.
 Default modes (``shear_beam_modes``): those of a uniform shear beam fixed at its base,
 phi_n(z) = sin((2n - 1) pi z/2H), T_n = T_1/(2n - 1), Gamma_n = 4/((2n - 1) pi), so that the
 first mode's participation is (4/pi) sin(pi z/2H), 1.273 at the top, and the modes' sum is 1
-at every height (Chopra 2017 section 16.3; Miranda & Taghavi 2005).
+at every height (Chopra 2017; the shear-beam limit of Miranda & Taghavi 2005).
 
 References: Nigam, N.C. & Jennings, P.C. (1969), BSSA 59(2), 909-922.  Chopra, A.K. (2017),
 Dynamics of Structures, 5th ed., Pearson.  Miranda, E. & Taghavi, S. (2005), Approximate floor
