@@ -169,7 +169,7 @@ def _record(name, dt, floor, provenance):
     return Record(name=name, dt=dt, samples=floor, provenance=provenance)
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=256)
 def _floor_of_samples(ground, dt, modes, name):
     padded = np.concatenate([ground.samples, np.zeros(math.ceil(decay_time(modes) / dt))])
     return _record(f"floor over {name}", dt, record_response(padded, dt, modes),
@@ -181,12 +181,14 @@ def floor_of_record(record, modes, duration=None):
     (None: its end), computed once per ground samples and modes, padded with the building's
     free vibration (``decay_time``)."""
     samples = record.samples
-    if duration is not None:
-        samples = samples[:max(2, math.ceil(duration / record.dt))]
+    if duration is not None:  # the ground's last sample at or just after its window's end
+        steps = duration / record.dt
+        samples = samples[:max(2, (round(steps) if math.isclose(steps, round(steps))
+                                   else math.ceil(steps)) + 1)]
     return _floor_of_samples(_Samples(samples), record.dt, tuple(modes), record.name)
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=256)
 def floor_of_sine(frequency, phase, duration, span, modes):
     """The floor's :class:`Record` over a ground sine of unit amplitude (``sine_response``),
     sampled ``SAMPLES_PER_PERIOD`` times per period of the sine or of the shortest mode, over
@@ -209,7 +211,7 @@ def _sampled(g, rec, dt, n):
     return out
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=256)
 def floor_of_motion(spec, modes):
     """The floor's :class:`Record` over a resolved sweep or pulse (kernels/api.py) given as
     the sorted ``(key, value)`` pairs of its dict at amplitude 1 and start 0, sampled

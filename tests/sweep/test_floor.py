@@ -202,3 +202,13 @@ def test_study_sweeps_the_building_period():
     assert ds["period"].attrs["units"] == "s" and list(ds["period"].values) == [0.0, 0.5]
     ground = ds["pga"].sel(period=0.0).values
     assert ground[1] == pytest.approx(2 * ground[0]) and np.all(ds["outcome"] >= 0)
+
+
+def test_scene_on_a_rigid_building_is_the_scene_on_the_ground():
+    """Period 0: the body does on the floor exactly what it does on the ground."""
+    import sweep
+    ground = {"kind": "record", "name": "elcentro1940_ns", "pga": "0.4 g", "duration": 4.0}
+    on_floor = sweep.simulate(_floor_scene({"period": 0.0}, ground))
+    on_ground = sweep.simulate({**SCENE, "excitation": {"horizontal": ground}})
+    assert on_floor.impact_times == on_ground.impact_times and on_floor.impact_count > 0
+    assert on_floor.max_abs_theta == on_ground.max_abs_theta
