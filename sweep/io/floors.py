@@ -31,8 +31,8 @@ def resolve_floor(building, ground, t_end):
     found = modes(building)
     if ground["kind"] == "sine":
         duration = math.inf if ground["duration"] is None else ground["duration"]
-        source = floor_of_sine(ground["frequency"], ground["phase"], duration,
-                               max(t_end - ground["start"], 0.0), found)
+        span = 0.0 if math.isfinite(duration) else max(t_end - ground["start"], 0.0)
+        source = floor_of_sine(ground["frequency"], ground["phase"], duration, span, found)
         scale = ground["amplitude"]
     elif ground["kind"] in ("sweep", "pulse"):
         unit = {key: value for key, value in ground.items() if key != "amplitude"}
