@@ -5,7 +5,7 @@ YAML file, or what a notebook writes by hand)::
 
     {"body": {"B": 0.1, "H": 0.3, "i_g": None},            # i_g: radius of gyration about G
      "contact": {"mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
-                 "landing": "flat" | "face_friction" | "corner"},
+                 "landing": "face_friction" | "flat" | "corner"},
      "excitation": {"horizontal": GROUND, "vertical": GROUND},
      "initial": {"theta", "omega", "x_dot", "y_dot", "lift"},
      "solver": {"method": "adaptive" | "fixed", "rtol", "atol", "dt", "max_step", "t_end",
@@ -32,7 +32,7 @@ from .watchdog import Watchdog, control
 DEFAULTS = {
     "body": {"i_g": None},
     "contact": {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
-                "e_x": -0.8, "e_y": 0.2, "landing": "flat"},
+                "e_x": -0.8, "e_y": 0.2, "landing": "face_friction"},
     "initial": {"theta": 0.0, "omega": 0.0, "x_dot": 0.0, "y_dot": 0.0, "lift": 0.0},
     "solver": {"method": "adaptive", "rtol": 1e-8, "atol": 1e-10, "dt": 1e-3,
                "max_step": 0.05, "t_end": 10.0, "max_steps": 5_000_000,

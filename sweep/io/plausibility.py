@@ -218,7 +218,10 @@ def scene_doubts(scene, resolved):
              if (doubt := _quantity_doubt(path, q)) is not None]
     found += _friction_doubts(scene.contact)
     for key, ground in resolved["excitation"].items():
+        g = getattr(scene.excitation, key)
+        if g.kind == "floor":  # the ground under the building was read and scaled
+            key, g, ground = f"{key}.ground", g.ground, ground.get("ground", ground)
         if ground["kind"] == "record":
-            doubt = _record_doubt(key, getattr(scene.excitation, key), ground)
+            doubt = _record_doubt(key, g, ground)
             found += [doubt] if doubt is not None else []
     return found

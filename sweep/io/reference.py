@@ -42,6 +42,8 @@ SCENE = (Section("", scene.Scene, {}),
          Section("excitation", scene.Excitation, {}),
          *(Section(f"{_GROUND} (kind: {typing.get_args(kind.model_fields['kind'].annotation)[0]})",
                    kind, DEFAULTS["ground"]) for kind in _KINDS),
+         Section(f"{_GROUND} (kind: floor).building", scene.Building, {}),
+         Section(f"{_GROUND} (kind: floor).building.modes[i]", scene.BuildingMode, {}),
          Section("initial", scene.Initial, DEFAULTS["initial"]),
          Section("solver", scene.Solver, DEFAULTS["solver"]))
 STUDY = (Section("", study.StudyFile, {"output": f"{study.OUTPUT_DIR}/<name>.nc"}),
@@ -170,8 +172,10 @@ def _type_text(schema, sections):
     if "$ref" in schema:
         name = schema["$ref"].rsplit("/", 1)[-1]
         return f"mapping ({sections[name]})" if name in sections else "mapping"
-    if "oneOf" in schema:
+    if "oneOf" in schema and "discriminator" in schema:
         return "mapping, one of the kinds below"
+    if "oneOf" in schema:
+        return " or ".join(_type_text(s, sections) for s in schema["oneOf"])
     if "const" in schema:
         return f"`{schema['const']}`"
     if "enum" in schema:
@@ -296,7 +300,7 @@ def _nullable_sections(schema):
             if "$ref" in prop:
                 definition["properties"][key] = {
                     "anyOf": [{"$ref": prop.pop("$ref")}, {"type": "null"}], **prop}
-            elif "oneOf" in prop:
+            elif "discriminator" in prop:  # a ground component, by its kind
                 choices = {k: prop.pop(k) for k in ("oneOf", "discriminator")}
                 definition["properties"][key] = {
                     "anyOf": [choices, {"const": "none"}, {"type": "null"}], **prop}

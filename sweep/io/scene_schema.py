@@ -16,14 +16,14 @@ from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
 
 import numpy as np
-from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
-                      PlainValidator, ValidationInfo, WithJsonSchema, field_validator,
-                      model_validator)
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Discriminator,
+                      Field, PlainValidator, Tag, ValidationInfo,
+                      WithJsonSchema, field_validator, model_validator)
 
 from kernels.api import DEFAULTS, PackingError, scene_row
 from kernels.codes import LANDING_NAMES
 
-from . import records, units
+from . import floors, records, units
 from .units import Quantity
 from .loader import load_file
 from .problems import MISSING, FieldError, FileProblems, Problem, join_path
@@ -31,7 +31,7 @@ from .problems import MISSING, FieldError, FileProblems, Problem, join_path
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
 SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks within 1.3 %
-KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic")
+KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic", "floor")
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
 MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 scene field holds exactly
@@ -137,9 +137,9 @@ class Contact(StrictModel):
         None, description="normal restitution (0 with enough friction: Housner's impact)")
     landing: Literal[LANDING_NAMES] = Field(
         DEFAULTS["contact"]["landing"], description="law of a landing after a translation "
-        "jump: flat (two-contact impulse), face_friction (one contact at the middle of the "
-        "base: its friction turns the body), corner (the leading corner first); "
-        "docs/landing.md")
+        "jump: face_friction (one contact at the middle of the base: its friction turns the "
+        "body; the paper's Fig. 5), flat (two-contact impulse), corner (the leading corner "
+        "first); docs/landing.md")
 
 
 class _Ground(StrictModel):
@@ -357,8 +357,90 @@ class PulseMotion(_Ground):
     duration: Duration = Field(description="length of the pulse")
 
 
+GroundMotion = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
+                               SyntheticMotion], Field(discriminator="kind")]
+
+
+def _ratio(value):
+    """A damping ratio: a number (0.05) or a percentage (``"5 %"``)."""
+    if isinstance(value, str) and value.strip().endswith("%"):
+        try:
+            return float(value.strip()[:-1]) / 100.0
+        except ValueError:
+            raise ValueError("must be a number or a percentage such as '5 %'") from None
+    return _plain_number(value)
+
+
+Damping = Annotated[float, BeforeValidator(_ratio), Field(ge=0, lt=1), WithJsonSchema(
+    {"anyOf": [{"type": "number", "minimum": 0, "exclusiveMaximum": 1},
+               {"type": "string", "pattern": r"^\s*[0-9.]+\s*%\s*$"}]})]
+
+
+class BuildingMode(StrictModel):
+    """One mode of a building at the floor (docs/floors.md)."""
+
+    period: quantity("time", gt=0) = Field(description="period of the mode")
+    damping: Optional[Damping] = Field(None, description="damping ratio (default: the "
+                                                         "building's)")
+    participation: Real = Field(description="participation factor times the mode shape at "
+                                            "the floor, Gamma phi")
+
+
+class Building(StrictModel):
+    """A linear building: its fundamental ``period`` and the floor's ``height_ratio`` z/H
+    give the modes of a uniform shear beam, or ``modes`` lists them (docs/floors.md)."""
+
+    period: Optional[quantity("time", ge=0)] = Field(
+        None, description="fundamental period T1 (0: a rigid building)")
+    damping: Damping = Field("5 %", validate_default=True,
+                             description="damping ratio of every mode (5 % or 0.05)")
+    height_ratio: Annotated[Real, Field(gt=0, le=1)] = Field(
+        1.0, description="height of the floor over the building's, z/H (1: the top)")
+    modes: Annotated[Union[Annotated[int, BeforeValidator(_plain_number), Field(ge=1, le=100),
+                                     Tag("count")],
+                           Annotated[list[BuildingMode], Tag("list")]],
+                     Discriminator(lambda v: "list" if isinstance(v, list) else "count")] = Field(
+        1, description="number of shear-beam modes, or the modes as a list of {period, "
+                       "damping, participation}")
+
+    @model_validator(mode="after")
+    def _period_or_modes(self):
+        if isinstance(self.modes, list):
+            given = [k for k in ("period", "height_ratio") if k in self.model_fields_set]
+            if given:
+                raise FieldError(given[0], str(getattr(self, given[0])),
+                                 "the modes are listed: give each one's period and "
+                                 "participation there, or a period and a number of modes")
+        elif self.period is None:
+            raise FieldError("period", MISSING, "the fundamental period is required unless "
+                                                "modes lists the modes")
+        return self
+
+
+class FloorMotion(StrictModel):
+    """The absolute acceleration of a floor of a linear ``building`` over any ``ground``
+    motion (``sweep.groundmotion.floor``); the ground's ``start`` and ``duration`` are the
+    floor's."""
+
+    kind: Literal["floor"] = Field(description="the kind of motion")
+    ground: GroundMotion = Field(description="the ground motion under the building")
+    building: Building = Field(description="the building")
+
+    @field_validator("ground", mode="before")
+    @classmethod
+    def _none_shorthand(cls, value):
+        return {"kind": "none"} if value is None or value == "none" else value
+
+    @model_validator(mode="after")
+    def _own_scale(self):
+        if getattr(self.ground, "scale_with", None) is not None:
+            raise FieldError(("ground", "scale_with"), self.ground.scale_with,
+                             "a floor's ground has a scale of its own")
+        return self
+
+
 Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
-                         SyntheticMotion], Field(discriminator="kind")]
+                         SyntheticMotion, FloorMotion], Field(discriminator="kind")]
 
 
 class Excitation(StrictModel):
@@ -442,7 +524,7 @@ class Scene(StrictModel):
 # --- errors -----------------------------------------------------------------------------------
 
 _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
-           PulseMotion, SyntheticMotion, Initial, Solver)
+           PulseMotion, SyntheticMotion, FloorMotion, Building, BuildingMode, Initial, Solver)
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
@@ -451,7 +533,9 @@ def _dotted(loc):
     ground component (``excitation.horizontal.sine.amplitude`` -> ``...horizontal.amplitude``)."""
     path = ""
     for i, key in enumerate(loc):
-        if i >= 2 and loc[i - 1] in ("horizontal", "vertical") and key in KINDS:
+        if i >= 2 and loc[i - 1] in ("horizontal", "vertical", "ground") and key in KINDS:
+            continue
+        if loc[i - 1:i] == ("modes",) and key in ("count", "list"):  # a building's modes
             continue
         path = join_path(path, key)
     return path
@@ -564,12 +648,18 @@ def _scale(g, rec, body, excitation):
     return DEFAULTS["ground"]["scale"] if g.scale is None else g.scale
 
 
-def _ground(g, body, excitation):
+def _ground(g, body, excitation, t_end=None):
     """Resolved SI dict of one ground component (kernels/api.py docstring); a synthetic
-    motion resolves into a record (its samples), both keep the :class:`Record` as ``source``.
-    ``excitation``: the components resolved before it."""
+    motion and a floor resolve into a record (its samples), keeping the :class:`Record` as
+    ``source`` (a floor its resolved ``ground`` too).  ``excitation``: the components resolved
+    before it; ``t_end``: how long a floor over an endless ground is computed."""
     if g.kind == "none":
         return {"kind": "none"}
+    if g.kind == "floor":
+        try:
+            return floors.resolve_floor(g.building, _ground(g.ground, body, excitation), t_end)
+        except FileProblems as err:
+            raise err.with_prefix("ground") from None
     defaults = DEFAULTS["ground"]
     out = {"kind": g.kind, "start": _si(g.start, defaults["start"]),
            "duration": _si(g.duration, defaults["duration"])}
@@ -594,6 +684,10 @@ def _end(ground):
     """Time at which a resolved component stops moving the floor: inf never, None no motion."""
     if ground["kind"] == "none":
         return None
+    if "ground" in ground:  # a floor ends with its ground's ring-down, or never
+        end = _end(ground["ground"])
+        if end is None or not math.isfinite(end):
+            return end
     length = math.inf if ground["duration"] is None else ground["duration"]
     if ground["kind"] == "record":
         length = min(length, ground["dt"] * len(ground["samples"]))
@@ -661,7 +755,8 @@ def resolve_scene(scene):
     excitation = {}
     for key in ("horizontal", "vertical"):
         try:
-            excitation[key] = _ground(getattr(scene.excitation, key), body, excitation)
+            excitation[key] = _ground(getattr(scene.excitation, key), body, excitation,
+                                      _si(scene.solver.t_end, DEFAULTS["solver"]["t_end"]))
         except FileProblems as err:
             raise err.with_prefix(f"excitation.{key}") from None
 

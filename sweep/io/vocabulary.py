@@ -64,7 +64,8 @@ FIELD_DIMENSIONS = {
     "omega": "angular_velocity", "x_dot": "velocity", "y_dot": "velocity",
     "pga": "acceleration", "start": "time", "duration": "time", "dt": "time",
     "max_step": "time", "t_end": "time", "zeno_dt": "time", "dt_out": "time",
-    "kind": "name", "name": "name", "path": "name", "units": "name", "method": "name",
+    "period": "time", "damping": "dimensionless", "height_ratio": "dimensionless",
+    "seed": "dimensionless", "kind": "name", "name": "name", "path": "name", "units": "name", "method": "name",
     "law": "name", "hold": "name", "shape": "name",
 }
 SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver")

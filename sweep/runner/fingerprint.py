@@ -65,6 +65,8 @@ def record_references(study):
     excitation = study.scene.get("excitation")
     for which in _EXCITATIONS:
         ground = excitation.get(which) if isinstance(excitation, dict) else None
+        if isinstance(ground, dict) and isinstance(ground.get("ground"), dict):
+            ground = ground["ground"]  # a floor reads its ground's record
         if isinstance(ground, dict):
             found |= {(key, ground[key]) for key in _RECORD_KEYS
                       if isinstance(ground.get(key), str)}

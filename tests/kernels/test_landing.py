@@ -235,10 +235,16 @@ def test_fig5_panel_files():
     assert results["c"].omega_after[0] == pytest.approx(-4.5, rel=1e-12)
 
 
-def test_flat_is_the_default():
-    """Without contact.landing a scene lands flat: the same impacts as landing: flat."""
-    assert DEFAULTS["contact"]["landing"] == "flat"
-    raw = _panel("d")
-    del raw["contact"]["landing"]
-    default, flat = simulate(raw), simulate(_panel("d", "flat"))
-    assert default.impact_times == flat.impact_times and default.omega_after == flat.omega_after
+def test_fig5_panels_with_the_default_contact():
+    """Without contact.landing a scene lands face_friction: the four panels give the paper's
+    outcomes, impact for impact as with landing: face_friction written out."""
+    assert DEFAULTS["contact"]["landing"] == "face_friction"
+    got = {}
+    for p in "abcd":
+        raw = _panel(p)
+        del raw["contact"]["landing"]
+        default, face = simulate(raw), simulate(_panel(p, "face_friction"))
+        assert default.impact_times == face.impact_times
+        assert default.omega_after == face.omega_after
+        got[p] = _outcome(default)
+    assert got == PAPER

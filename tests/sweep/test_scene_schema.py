@@ -55,7 +55,7 @@ def test_design_example(tmp_path):
     r = resolve_scene(load_scene(_write(tmp_path, DESIGN_EXAMPLE)))
     assert r["body"] == {"B": 0.1, "H": 0.3, "i_g": None}
     assert r["contact"] == {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
-                            "e_x": -0.8, "e_y": 0.2, "landing": "flat"}
+                            "e_x": -0.8, "e_y": 0.2, "landing": "face_friction"}
     h = r["excitation"]["horizontal"]
     assert h["kind"] == "sine" and h["frequency"] == 4.0 and h["phase"] == 0.0
     assert h["amplitude"] == pytest.approx(1.5 * G / 3, rel=1e-12)
