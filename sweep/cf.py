@@ -108,6 +108,12 @@ VARIABLES = {
     "pgv_norm": Variable("float64", "1", "PGV p / (g tan alpha)",
                          comment="p = sqrt(g R / (i^2 + R^2)), sqrt(3 g / 4 R) for a uniform "
                                  "body; Dimitrakopoulos & DeJong (2012)"),
+    "alpha_1": Variable("float64", "rad", "angle at G from the vertical to the left corner",
+                        comment="atan(b1/y_G), b1 = B/2 + x_G; the body tips to the left "
+                                "(overturn_direction +1) about this corner (docs/bodies.md)"),
+    "alpha_2": Variable("float64", "rad", "angle at G from the vertical to the right corner",
+                        comment="atan(b2/y_G), b2 = B/2 - x_G; the body tips to the right "
+                                "(overturn_direction -1) about this corner (docs/bodies.md)"),
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 

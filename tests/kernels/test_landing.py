@@ -114,7 +114,7 @@ def test_landing_never_gains_energy(landing):
         msg = (body, u, v, e_x, e_y, mu, flags)
         assert not flags & IMPACT_PAINLEVE, msg
         assert _ke(q, body.i2) <= 0.5 * (u * u + v * v) * (1.0 + 1e-12), msg
-        assert min(q[4] - body.b * q[5], q[4] + body.b * q[5]) >= -1e-12 * abs(v), msg
+        assert min(q[4] - body.b1 * q[5], q[4] + body.b2 * q[5]) >= -1e-12 * abs(v), msg
 
 
 def test_energy_loss_closed_form():
@@ -143,8 +143,8 @@ def test_tilt_direction_is_forward_at_the_landing():
     towards u- (sgn omega+ = -sgn u-, (L0)); the normal impulse has no moment."""
     checked = 0
     for body, u, v, e_x, e_y, mu in _cases():
-        up, vp, wp, _ = face_friction(u, v, e_x, e_y, mu, 0.75 * mu, *body)
-        if e_x > -1.0 and min(vp - body.b * wp, vp + body.b * wp) > 0.0:
+        up, vp, wp, _ = face_friction(u, v, e_x, e_y, mu, 0.75 * mu, body.b1, body.h, body.i2)
+        if e_x > -1.0 and min(vp - body.b1 * wp, vp + body.b2 * wp) > 0.0:
             q, _ = _land(u, v, body, e_x, e_y, mu, 0.75 * mu)
             assert np.sign(q[5]) == -np.sign(u) == np.sign(wp)
             checked += 1

@@ -53,7 +53,7 @@ def _scene(**excitation):
 
 def test_design_example(tmp_path):
     r = resolve_scene(load_scene(_write(tmp_path, DESIGN_EXAMPLE)))
-    assert r["body"] == {"B": 0.1, "H": 0.3, "i_g": None}
+    assert r["body"] == {"B": 0.1, "H": 0.3, "i_g": None, "G": None}
     assert r["contact"] == {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
                             "e_x": -0.8, "e_y": 0.2, "landing": "flat"}
     h = r["excitation"]["horizontal"]
