@@ -407,7 +407,8 @@ def history_dataset(history, scene, source=None, result=None):
     history : dict of str to ndarray, shape (n,)
         The kernel's history (``t`` and every name of ``HISTORY_VARIABLES``).
     scene : dict
-        The resolved scene (its body's ``B`` and ``H`` become attributes).
+        The resolved scene (its body's ``B``, ``H`` and G, ``x_G`` and ``y_G`` from the middle
+        of the base, become attributes).
     source : str, optional
         The scene file, for the ``source`` attribute.
     result : SceneResult, optional
@@ -423,8 +424,10 @@ def history_dataset(history, scene, source=None, result=None):
     data = {name: ("time", np.asarray(history[name], dtype=var.dtype),
                    variable_attrs(name, HISTORY_VARIABLES))
             for name, var in HISTORY_VARIABLES.items()}
+    body = scene["body"]
+    x_G, y_G = (0.0, body["H"] / 2) if body.get("G") is None else body["G"]
     attrs = {"Conventions": CONVENTIONS, "title": "rigid block on a moving floor: history",
-             "B": scene["body"]["B"], "H": scene["body"]["H"]}
+             "B": body["B"], "H": body["H"], "x_G": x_G, "y_G": y_G}
     if source is not None:
         attrs["source"] = source
     if result is not None:
