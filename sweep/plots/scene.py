@@ -70,6 +70,7 @@ def scene_verdict(ds):
     return verdict({**{key: attrs[key] for key in (
         "status", "t_overturn", "overturn_direction", "impact_count", "max_abs_theta",
         "max_slip", "max_lift", "t_rest", "B", "H")},
+        "alpha": slenderness(body_shape(ds)),
         "mode_time": dict(zip(modes, np.atleast_1d(attrs["mode_time"]).tolist())),
         "t_final": float(ds["time"].values[-1])})
 
