@@ -167,10 +167,10 @@ class Body(StrictModel):
                              f"R_1 cos alpha_1 = {h1:.9g} m and R_2 cos alpha_2 = {h2:.9g} m "
                              "are both the height of G: they must agree")
         h = 0.5 * (h1 + h2)
-        self.B = Quantity(b1 + b2, "", "length")
-        self.G = [Quantity(0.5 * (b1 - b2), "", "length"), Quantity(h, "", "length")]
+        self.B = Quantity(b1 + b2, "m", "length")   # in metres: not a bare number written
+        self.G = [Quantity(0.5 * (b1 - b2), "m", "length"), Quantity(h, "m", "length")]
         if self.H is None:
-            self.H = Quantity(2.0 * h, "", "length")
+            self.H = Quantity(2.0 * h, "m", "length")
         return self
 
 
