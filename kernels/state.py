@@ -2,9 +2,8 @@
 
 A scene comes to the compiled code as one record of ``codes.SCENE_DTYPE`` (fields by name,
 passed as one pointer).  ``scene_of`` makes the
-``Scene``: the ``Body`` (half sizes and inertia) and the ``Contact`` law (friction and
-restitution, with the surface's kinetic friction as flat sliding sees it) beside the row's
-floor, solver and initial records.  The record samples a floor component may point into
+``Scene``: the ``Body`` (the corners' distances from G and the inertia) and the ``Contact``
+law (friction and restitution) beside the row's floor, solver and initial records.  The record samples a floor component may point into
 are one array shared by a chunk of scenes, passed beside the scene as ``rec``.  Arrays
 stay out of the scene on purpose: numba counts references to every array a compiled
 function receives or takes out of a record, and passes a record of many scalars as many
