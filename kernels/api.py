@@ -3,7 +3,8 @@
 A *resolved scene* is a plain nested dict in SI units (what ``sweep.schema`` produces from a
 YAML file, or what a notebook writes by hand)::
 
-    {"body": {"B": 0.1, "H": 0.3, "i_g": None},            # i_g: radius of gyration about G
+    {"body": {"B": 0.1, "H": 0.3, "i_g": None, "G": None},  # i_g: radius of gyration about G
+                                            # G: [x_G, y_G] from the middle of the base
      "contact": {"mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
                  "landing": "face_friction" | "flat" | "corner"},
      "excitation": {"horizontal": GROUND, "vertical": GROUND},
@@ -30,7 +31,7 @@ from . import codes
 from .watchdog import Watchdog, control
 
 DEFAULTS = {
-    "body": {"i_g": None},
+    "body": {"i_g": None, "G": None},
     "contact": {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
                 "e_x": -0.8, "e_y": 0.2, "landing": "face_friction"},
     "initial": {"theta": 0.0, "omega": 0.0, "x_dot": 0.0, "y_dot": 0.0, "lift": 0.0},
@@ -150,6 +151,23 @@ def _ground_fields(spec, path, records):
     return g
 
 
+def centre(body):
+    """(x_G, y_G) [m] of a resolved body, from the middle of its base: its ``G``, default
+    (0, H/2).  A PackingError when G is not strictly inside the body (docs/bodies.md)."""
+    if body.get("G") is None:
+        return 0.0, body["H"] / 2
+    try:
+        x, y = body["G"]
+    except (TypeError, ValueError):
+        raise PackingError("body.G", f"must be two numbers [x, y], got {body['G']!r}") from None
+    x, y = _number(x, "body.G"), _number(y, "body.G")
+    B, H = float(body["B"]), float(body["H"])
+    if not (abs(x) < B / 2 and 0.0 < y < H):
+        raise PackingError("body.G", f"must lie inside the body, |x| < B/2 = {B / 2:g} m and "
+                                     f"0 < y < H = {H:g} m, got [{x:g}, {y:g}]")
+    return x, y
+
+
 def scene_rows(n):
     """n zeroed scene records (``codes.SCENE_DTYPE``), read and written by field name."""
     return np.zeros(n, codes.SCENE_DTYPE).view(np.recarray)
@@ -207,6 +225,7 @@ def scene_row(scene, records=None):
     i_g = body.get("i_g")
     row["body.i2"] = (b * b + h * h) / 3 if i_g is None else \
         _number(i_g, "body.i_g", positive=True) ** 2
+    row["body.x_g"], row["body.y_g"] = centre(body)
     for key, path, field in _FRICTION:
         value = row[field] = _number(contact[key], path)
         if value < 0:

@@ -79,12 +79,13 @@ LANDING_NAMES = ("flat", "face_friction", "corner")
 GROUND_DTYPE = np.dtype([(name, "f8") for name in (
     "kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
     "rec_off", "rec_n", "rec_dt")])
-# body: breadth, height [m], squared radius of gyration about G [m^2]; contact: friction,
+# body: breadth, height [m], squared radius of gyration about G [m^2], G from the middle of the
+# base (x_g, y_g) [m] (symmetric: 0, H/2; docs/bodies.md); contact: friction,
 # restitution and the landing law (a LANDING_* code); initial: theta [rad], omega [rad/s],
 # u, v [m/s] and lift [m]; solver: method (ADAPTIVE/FIXED) and the options of
 # ``kernels.api.DEFAULTS`` (theta_over: the overturning angle [rad]).
 SCENE_DTYPE = np.dtype([
-    ("body", [(name, "f8") for name in ("B", "H", "i2")]),
+    ("body", [(name, "f8") for name in ("B", "H", "i2", "x_g", "y_g")]),
     ("contact", [(name, "f8") for name in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x",
                                            "e_y", "landing")]),
     ("initial", [(name, "f8") for name in ("theta", "omega", "u", "v", "lift")]),

@@ -8,8 +8,10 @@ corner).  If that impulse leaves the friction cone |P_t| <= mu_s P_n the corner 
 during the impact and P_t = -sigma mu_k P_n (step 3).  No impact may gain energy (step 6):
 a law that would is replaced by the plastic sticking law, and if that still gains energy,
 by the frictionless plastic one, which cannot.  A corner takes the edge's friction; the
-same law at the middle of the base (s = 0), with the surface's friction, is the
-``face_friction`` landing (docs/landing.md).
+same law at the point of the base below G (s = 0, the middle of a symmetric body), with the
+surface's friction, is the ``face_friction`` landing (docs/landing.md).  Each corner has its
+own vector r_c (``motion.corner``): for a body with G off the middle, Housner's ratio about
+the new pivot c is 1 - b_c (b1 + b2)/(i^2 + R_c^2) (docs/bodies.md).
 """
 import math
 
@@ -24,9 +26,9 @@ def delassus(q, s, body):
     """The velocity (V_x, V_y) of corner s and its inverse mass matrix W (the Delassus
     matrix, per unit mass): V_c+ = V_c- + W P for an impulse P at the corner.
     Returns (V_x, V_y, W_tt, W_tn, W_nn)."""
-    b, h, i2 = body
-    rcx, rcy = corner(s, q[ITHETA], b, h)
-    Vx, Vy = corner_velocity(q, s, b, h)
+    i2 = body.i2
+    rcx, rcy = corner(s, q[ITHETA], body)
+    Vx, Vy = corner_velocity(q, s, body)
     return Vx, Vy, 1.0 + rcy * rcy / i2, -rcx * rcy / i2, 1.0 + rcx * rcx / i2
 
 
@@ -54,7 +56,7 @@ def corner_impulse(q, s, e_x, e_y, mu_s, mu_k, body):
 @jit
 def apply_impulse(q, s, Pt, Pn, body):
     """Add the impulse (P_t, P_n) at corner s to the velocities of q."""
-    rcx, rcy = corner(s, q[ITHETA], body.b, body.h)
+    rcx, rcy = corner(s, q[ITHETA], body)
     q[IU] += Pt
     q[IV] += Pn
     q[IOMEGA] += (rcx * Pn - rcy * Pt) / body.i2
@@ -70,7 +72,7 @@ def restore_velocities(q, u, v, omega):
 
 @jit
 def point_impact(q, s, mu_s, mu_k, body, contact):
-    """Impact of the base point s (a corner, s = +-1, or the middle of the base, s = 0:
+    """Impact of the base point s (a corner, s = +-1, or the point of the base below G, s = 0:
     ``motion.corner``) with the friction (mu_s, mu_k) and the contact's restitution (section
     2.2); updates q, returns the flag bits (``codes.SLIPPED``, ``CLAMPED``,
     ``IMPACT_PAINLEVE``)."""
@@ -90,8 +92,8 @@ def point_impact(q, s, mu_s, mu_k, body, contact):
         if kinetic_energy(q, i2) <= ke * (1.0 + ENERGY_ROUNDOFF):
             return flags | f2 | CLAMPED
         restore_velocities(q, u, v, omega)
-    Vy = corner_velocity(q, s, body.b, body.h)[1]  # frictionless plastic: a projection
-    rcx = corner(s, q[ITHETA], body.b, body.h)[0]
+    Vy = corner_velocity(q, s, body)[1]            # frictionless plastic: a projection
+    rcx = corner(s, q[ITHETA], body)[0]
     apply_impulse(q, s, 0.0, -Vy / (1.0 + rcx * rcx / i2), body)
     return flags | CLAMPED
 

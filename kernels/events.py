@@ -38,7 +38,7 @@ def n_events(mode):
 @jit
 def event_values(mode, t, q, ctx, scene, rec, out):
     """Write the mode's event functions at (t, q) into out."""
-    b, h, i2 = scene.body
+    body = scene.body
     theta_over = scene.solver.theta_over
     s = ctx[CTX_S]
     if mode == ROTATION or mode == SLIDE_ROTATION:
@@ -47,24 +47,24 @@ def event_values(mode, t, q, ctx, scene, rec, out):
         out[EV_IMPACT] = -s * q[ITHETA]
         out[EV_OVERTURN] = theta_over - abs(q[ITHETA])
         if mode == ROTATION:
-            thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)
+            thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, body)
             out[EV_LIFTOFF] = N
             out[EV_SLIP] = scene.contact.mu_edge_s * N - abs(F)
         else:
             sigma = ctx[CTX_SIGMA]
             thdd, udd, N, D = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x,
-                                                      g_e, b, h, i2, scene.contact.mu_edge_k)
+                                                      g_e, body, scene.contact.mu_edge_k)
             out[EV_LIFTOFF] = N
-            out[EV_SLIP] = sigma * corner_velocity(q, s, b, h)[0]
+            out[EV_SLIP] = sigma * corner_velocity(q, s, body)[0]
             out[EV_PAINLEVE] = D
     elif mode == SLIDE:
         out[EV_STOP] = ctx[CTX_SIGMA] * q[IU]
         out[EV_FREE_FALL] = G + ground(t, scene.floor, rec)[1]
     elif mode == TRANSLATION_JUMP:
-        out[EV_GAP_L] = q[IY] - h
+        out[EV_GAP_L] = q[IY] - body.h
     elif mode == ROTATION_JUMP:
-        out[EV_GAP_L] = q[IY] + corner(-1.0, q[ITHETA], b, h)[1]
-        out[EV_GAP_R] = q[IY] + corner(1.0, q[ITHETA], b, h)[1]
+        out[EV_GAP_L] = q[IY] + corner(-1.0, q[ITHETA], body)[1]
+        out[EV_GAP_R] = q[IY] + corner(1.0, q[ITHETA], body)[1]
         out[EV_JUMP_OVERTURN] = theta_over - abs(q[ITHETA])
 
 
@@ -72,20 +72,20 @@ def event_values(mode, t, q, ctx, scene, rec, out):
 def event_value(k, mode, t, q, ctx, scene, rec, scratch):
     """Event function k alone; only lift-off, the onset of slip, the Painleve condition and
     free fall need the floor motion and the forces."""
-    b, h, theta_over = scene.body.b, scene.body.h, scene.solver.theta_over
+    body, theta_over = scene.body, scene.solver.theta_over
     if mode == ROTATION or mode == SLIDE_ROTATION:
         if k == EV_IMPACT:
             return -ctx[CTX_S] * q[ITHETA]
         if k == EV_OVERTURN:
             return theta_over - abs(q[ITHETA])
         if k == EV_SLIP and mode == SLIDE_ROTATION:
-            return ctx[CTX_SIGMA] * corner_velocity(q, ctx[CTX_S], b, h)[0]
+            return ctx[CTX_SIGMA] * corner_velocity(q, ctx[CTX_S], body)[0]
     elif mode == ROTATION_JUMP:
         if k == EV_JUMP_OVERTURN:
             return theta_over - abs(q[ITHETA])
-        return q[IY] + corner(-1.0 if k == EV_GAP_L else 1.0, q[ITHETA], b, h)[1]
+        return q[IY] + corner(-1.0 if k == EV_GAP_L else 1.0, q[ITHETA], body)[1]
     elif mode == TRANSLATION_JUMP:
-        return q[IY] - h
+        return q[IY] - body.h
     elif mode == SLIDE and k == EV_STOP:
         return ctx[CTX_SIGMA] * q[IU]
     event_values(mode, t, q, ctx, scene, rec, scratch)

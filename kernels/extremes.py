@@ -17,7 +17,7 @@ import math
 from ._jit import jit
 from .codes import IOMEGA, ITHETA, IU, IX, IY, ROTATION_JUMP, TRANSLATION_JUMP
 from .integrate import dense
-from .motion import corner, corner_velocity, to_full
+from .motion import corner, corner_velocity, half_base, to_full
 from .roots import regula_falsi
 from .tolerances import TURN_XTOL
 
@@ -28,11 +28,14 @@ N_EXTREMES = 5
 
 
 @jit(inline="always")
-def footprint(q, b, h):
-    """(x_f, standing): the footprint x_f = x_c - s b of the base, from the contact corner s =
-    -sgn(theta) at x_c = x + r_cx, i.e. x + sgn(theta) (b (1 - cos theta) + h sin |theta|);
-    standing is |theta| <= alpha = atan(b/h)."""
+def footprint(q, body):
+    """(x_f, standing): the footprint x_f = x_c - s b_s of the base (where G would be, set
+    down flat), from the contact corner s = -sgn(theta) at x_c = x + r_cx, i.e.
+    x + sgn(theta) (b_s (1 - cos theta) + h sin |theta|); standing is |theta| <= alpha_s =
+    atan(b_s/h)."""
     theta = q[ITHETA]
+    b = half_base(-theta, body)
+    h = body.h
     c = math.cos(theta)
     sn = abs(math.sin(theta))
     x_f = q[IX] + math.copysign(b * (1.0 - c) + h * sn, theta)
@@ -42,14 +45,13 @@ def footprint(q, b, h):
 @jit
 def observe(mode, q, body, extremes):
     """Update the extremes with the full state q."""
-    b, h = body.b, body.h
     extremes[MAX_THETA] = max(extremes[MAX_THETA], abs(q[ITHETA]))
     extremes[MAX_TRAVEL] = max(extremes[MAX_TRAVEL], abs(q[IX]))
     if mode == TRANSLATION_JUMP or mode == ROTATION_JUMP:
-        gap = q[IY] + min(corner(-1.0, q[ITHETA], b, h)[1], corner(1.0, q[ITHETA], b, h)[1])
+        gap = q[IY] + min(corner(-1.0, q[ITHETA], body)[1], corner(1.0, q[ITHETA], body)[1])
         extremes[MAX_LIFT] = max(extremes[MAX_LIFT], gap)
         return
-    x_f, standing = footprint(q, b, h)
+    x_f, standing = footprint(q, body)
     if standing:
         if math.isnan(extremes[BASE_REF]):
             extremes[BASE_REF] = x_f
@@ -63,9 +65,8 @@ def _rate(j, q, body):
         return q[IOMEGA]
     if j == MAX_TRAVEL:
         return q[IU]
-    b, h = body.b, body.h
-    s = -1.0 if corner(-1.0, q[ITHETA], b, h)[1] < corner(1.0, q[ITHETA], b, h)[1] else 1.0
-    return corner_velocity(q, s, b, h)[1]
+    s = -1.0 if corner(-1.0, q[ITHETA], body)[1] < corner(1.0, q[ITHETA], body)[1] else 1.0
+    return corner_velocity(q, s, body)[1]
 
 
 @jit(inline="always")

@@ -17,7 +17,7 @@ from ._jit import jit
 from .codes import (CLAMPED, IMPACT_PAINLEVE, IOMEGA, IU, IV, LANDING_CORNER,
                     LANDING_FACE_FRICTION, SLIPPED)
 from .corner_impact import corner_impact, point_impact, restore_velocities
-from .motion import corner_velocity, kinetic_energy
+from .motion import corner_velocity, half_base, kinetic_energy, sliding_friction
 from .tolerances import APPROACH_ROUNDOFF, ENERGY_ROUNDOFF, IMPULSE_ROUNDOFF, V_ZERO
 
 SEQUENTIAL_IMPACTS = 50  # at most this many alternating corner impacts in one face impact
@@ -39,28 +39,35 @@ def face_impulses(q, body, contact):
     """Two-contact impulses (P_L, P_R, P_t, flags) with the face flat (PHYSICS 2.3,
     generalised to omega != 0 as the velocity-level two-contact problem), with the surface
     friction: the tangential impulse is (1 + e_x) times the sticking one, capped by the
-    friction cone |P_t| <= mu_s (P_L + P_R), beyond which it slips with mu_k."""
-    b, h, i2 = body
-    e_x, e_y, mu_s, mu_k = contact.e_x, contact.e_y, contact.mu_s, contact.mu_k
+    friction cone |P_t| <= mu_s (P_L + P_R), beyond which it slips with mu_k.
+
+    The corners lie at (-b1, -h) and (b2, -h) from G: an impulse (P_L, P_R, P_t) changes
+    V_L, V_R and the base's V_x by the matrix of ``Mfull`` (k_ij = b_i b_j / i^2,
+    k_i = b_i h / i^2, k_3 = h^2 / i^2; docs/bodies.md)."""
+    b1, b2, h, i2 = body.b1, body.b2, body.h, body.i2
+    e_x, e_y, mu_s = contact.e_x, contact.e_y, contact.mu_s
     u, v, omega = q[IU], q[IV], q[IOMEGA]
-    VL = v - omega * b
-    VR = v + omega * b
+    VL = v - omega * b1
+    VR = v + omega * b2
     Vx = u + omega * h
     dL = -VL - e_y * min(VL, 0.0)
     dR = -VR - e_y * min(VR, 0.0)
-    k1 = b * b / i2
-    k2 = b * h / i2
+    k11 = b1 * b1 / i2
+    k22 = b2 * b2 / i2
+    k12 = b1 * b2 / i2
+    k1 = b1 * h / i2
+    k2 = b2 * h / i2
     k3 = h * h / i2
-    Mfull = (1.0 + k1, 1.0 - k1, -k2,
-             1.0 - k1, 1.0 + k1, k2,
-             -k2, k2, 1.0 + k3)
+    Mfull = (1.0 + k11, 1.0 - k12, -k1,
+             1.0 - k12, 1.0 + k22, k2,
+             -k1, k2, 1.0 + k3)
     Pt = (1.0 + e_x) * _solve3(Mfull, (dL, dR, -Vx))[2]
     # normals with the tangential impulse fixed
-    det = (1.0 + k1) ** 2 - (1.0 - k1) ** 2
-    rL = dL + k2 * Pt
+    det = (1.0 + k11) * (1.0 + k22) - (1.0 - k12) ** 2
+    rL = dL + k1 * Pt
     rR = dR - k2 * Pt
-    PL = ((1.0 + k1) * rL - (1.0 - k1) * rR) / det
-    PR = ((1.0 + k1) * rR - (1.0 - k1) * rL) / det
+    PL = ((1.0 + k22) * rL - (1.0 - k12) * rR) / det
+    PR = ((1.0 + k11) * rR - (1.0 - k12) * rL) / det
     if omega != 0.0 and min(PL, PR) < -IMPULSE_ROUNDOFF * (abs(PL) + abs(PR)):
         # a rocking impact whose sticking two-contact solution pulls a corner down: the old
         # pivot lifts (Housner's case); a flat landing goes on to the friction cap (2.3)
@@ -68,11 +75,11 @@ def face_impulses(q, body, contact):
     if abs(Pt) <= mu_s * (PL + PR):
         return PL, PR, Pt, 0
     sigma = math.copysign(1.0, Vx) if abs(Vx) > V_ZERO else -math.copysign(1.0, Pt)
-    c = -sigma * mu_k                      # P_t = c (P_L + P_R)
-    a11 = 1.0 + k1 - k2 * c
-    a12 = 1.0 - k1 - k2 * c
-    a21 = 1.0 - k1 + k2 * c
-    a22 = 1.0 + k1 + k2 * c
+    c = -sigma * sliding_friction(sigma, body, contact)   # P_t = c (P_L + P_R)
+    a11 = 1.0 + k11 - k1 * c
+    a12 = 1.0 - k12 - k1 * c
+    a21 = 1.0 - k12 + k2 * c
+    a22 = 1.0 + k22 + k2 * c
     det = a11 * a22 - a12 * a21
     if det == 0.0:
         return 0.0, 0.0, 0.0, IMPACT_PAINLEVE
@@ -84,7 +91,9 @@ def face_impulses(q, body, contact):
 @jit
 def face_impact(q, body, contact):
     """Impact with theta = 0, both corners at the floor; updates q, returns flag bits."""
-    b, h, i2 = body
+    h, i2 = body.h, body.i2
+    b = 0.5 * (body.b1 + body.b2)           # the normal impulses' moment about G is
+    x_g = 0.5 * (body.b1 - body.b2)         # b2 P_R - b1 P_L = b (P_R - P_L) - x_G (P_L + P_R)
     u, v, omega = q[IU], q[IV], q[IOMEGA]
     ke = kinetic_energy(q, i2)
     PL, PR, Pt, flags = face_impulses(q, body, contact)
@@ -92,19 +101,20 @@ def face_impact(q, body, contact):
     if not flags & IMPACT_PAINLEVE and PL >= -tol and PR >= -tol:
         q[IU] += Pt
         q[IV] += PL + PR
-        q[IOMEGA] += (b * (PR - PL) + h * Pt) / i2
+        q[IOMEGA] += (b * (PR - PL) - x_g * (PL + PR) + h * Pt) / i2
         if kinetic_energy(q, i2) <= ke * (1.0 + ENERGY_ROUNDOFF):
             return flags
         restore_velocities(q, u, v, omega)
     # Only the corner striking harder takes the impulse, then the other in turn.
-    return corner_sequence(q, -1.0 if v - omega * b < v + omega * b else 1.0, body, contact)
+    return corner_sequence(q, -1.0 if v - omega * body.b1 < v + omega * body.b2 else 1.0,
+                           body, contact)
 
 
 @jit
-def approaches(q, s, b, h):
+def approaches(q, s, body):
     """Whether corner s moves into the floor (beyond round-off)."""
-    return corner_velocity(q, s, b, h)[1] < -APPROACH_ROUNDOFF * (abs(q[IV])
-                                                                  + b * abs(q[IOMEGA]))
+    return corner_velocity(q, s, body)[1] < -APPROACH_ROUNDOFF * (
+        abs(q[IV]) + half_base(s, body) * abs(q[IOMEGA]))
 
 
 @jit
@@ -118,7 +128,7 @@ def corner_sequence(q, s, body, contact):
         if flags & IMPACT_PAINLEVE:
             return flags
         s = -s
-        if not approaches(q, s, body.b, body.h):
+        if not approaches(q, s, body):
             return flags
     return flags | CLAMPED
 
@@ -129,19 +139,20 @@ def landing_impact(q, body, contact):
     (``codes.LANDING_*``); updates q, returns the flag bits.
 
     flat: ``face_impact``, the two-contact impulse (PHYSICS 2.3).  face_friction: the
-    two-coefficient impact (2.2) of the middle of the base with the surface's friction, whose
-    tangential impulse, h below G, turns the body (docs/landing.md (L3)); a corner that
-    rotation drives into the floor then strikes, and the other in turn.  corner: the leading
-    corner (on the side u points to) strikes first, then the other in turn; without a
-    horizontal velocity no corner leads and the landing is flat.
+    two-coefficient impact (2.2) of the point of the base below G (the middle of a symmetric
+    body) with the surface's friction, whose tangential impulse, h below G, turns the body
+    (docs/landing.md (L3)); a corner that rotation drives into the floor then strikes, and
+    the other in turn.  corner: the leading corner (on the side u points to) strikes first,
+    then the other in turn; without a horizontal velocity no corner leads and the landing is
+    flat.
     """
-    b, h = body.b, body.h
     if contact.landing == LANDING_FACE_FRICTION:
-        # s = 0: the middle of the base; W_nn = 1 there, so never a Painleve case
-        flags = point_impact(q, 0.0, contact.mu_s, contact.mu_k, body, contact)
-        s = -1.0 if corner_velocity(q, -1.0, b, h)[1] < corner_velocity(q, 1.0, b, h)[1] \
+        # s = 0: the point below G; W_nn = 1 there, so never a Painleve case
+        mu_k = sliding_friction(math.copysign(1.0, q[IU]), body, contact)
+        flags = point_impact(q, 0.0, contact.mu_s, mu_k, body, contact)
+        s = -1.0 if corner_velocity(q, -1.0, body)[1] < corner_velocity(q, 1.0, body)[1] \
             else 1.0
-        if approaches(q, s, b, h):
+        if approaches(q, s, body):
             flags |= corner_sequence(q, s, body, contact)
         return flags
     if contact.landing == LANDING_CORNER and q[IU] != 0.0:

@@ -16,7 +16,9 @@ rotation_jump      x, y, theta, u, v, w    -
 The full state is ``q = (x, y, theta, u, v, omega)`` (G relative to the floor, y = h when
 flat).  ``ctx`` holds the contact corner sign s (-1 left, +1 right), the slip direction
 sigma and the pivot (rotation) or rest position x.  theta > 0 is rotation about the left
-corner, which a floor acceleration to the right drives.  Forces are per unit mass.
+corner, which a floor acceleration to the right drives.  Forces are per unit mass.  Each
+corner has its own half-base b_s (``half_base``: b1 left, b2 right, docs/bodies.md); the
+point s = 0 is the point of the base below G.
 """
 import math
 
@@ -39,23 +41,52 @@ def n_dof(mode):
 
 
 @jit(inline="always")
-def corner(s, theta, b, h):
-    """Vector r_c from G to corner s (-1 left, +1 right) at angle theta (PHYSICS 1.1)."""
+def half_base(s, body):
+    """Horizontal distance b_s from G to corner s (b1 left, b2 right) on the flat body."""
+    return body.b2 if s > 0.0 else body.b1
+
+
+@jit(inline="always")
+def corner(s, theta, body):
+    """Vector r_c from G to corner s (-1 left, +1 right; 0 the point of the base below G) at
+    angle theta (PHYSICS 1.1, docs/bodies.md): (s b_s cos theta + h sin theta,
+    s b_s sin theta - h cos theta)."""
+    b = half_base(s, body)
+    h = body.h
     c = math.cos(theta)
     sn = math.sin(theta)
     return s * b * c + h * sn, s * b * sn - h * c
 
 
 @jit(inline="always")
-def rotation_dynamics(theta, omega, s, a_x, g_e, b, h, i2):
+def pivot_inertia(s, body):
+    """(i^2 + R_s^2): the moment of inertia per unit mass about corner s."""
+    b = half_base(s, body)
+    return body.i2 + b * b + body.h * body.h
+
+
+@jit(inline="always")
+def sliding_friction(sigma, body, contact):
+    """The surface's kinetic friction as flat sliding with sgn(u) = sigma sees it.
+
+    With mu_k > b_s/h >= mu_edge_k (s = sigma, the leading corner) flat sliding would tip
+    the body onto that corner, where the lower edge friction tips it straight back.  The
+    body then slides flat on the verge of tipping, with the friction that holds
+    theta'' = 0 there: b_s/h.
+    """
+    return min(contact.mu_k, max(half_base(sigma, body) / body.h, contact.mu_edge_k))
+
+
+@jit(inline="always")
+def rotation_dynamics(theta, omega, s, a_x, g_e, body):
     """Rocking about the fixed corner s: (theta'', F_c/m, N_c/m), PHYSICS 1.2 (3).
 
-    rho = -r_c points from the pivot to G; (i^2 + r^2) theta'' = a_x rho_y - g_e rho_x.
+    rho = -r_c points from the pivot to G; (i^2 + R_s^2) theta'' = a_x rho_y - g_e rho_x.
     """
-    rcx, rcy = corner(s, theta, b, h)
+    rcx, rcy = corner(s, theta, body)
     rho_x = -rcx
     rho_y = -rcy
-    thdd = (a_x * rho_y - g_e * rho_x) / (i2 + b * b + h * h)
+    thdd = (a_x * rho_y - g_e * rho_x) / pivot_inertia(s, body)
     w2 = omega * omega
     F = -thdd * rho_y - w2 * rho_x + a_x
     N = thdd * rho_x - w2 * rho_y + g_e
@@ -63,12 +94,13 @@ def rotation_dynamics(theta, omega, s, a_x, g_e, b, h, i2):
 
 
 @jit(inline="always")
-def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2, mu):
+def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, body, mu):
     """One corner on the floor and slipping with sgn(V_cx) = sigma, PHYSICS 1.2 (4).
 
     Returns (theta'', u'', N_c/m, D); D <= 0 is the Painleve condition.
     """
-    rcx, rcy = corner(s, theta, b, h)
+    i2 = body.i2
+    rcx, rcy = corner(s, theta, body)
     D = 1.0 + (rcx * rcx + mu * sigma * rcx * rcy) / i2
     N = (g_e + omega * omega * rcy) / D
     thdd = N * (rcx + mu * sigma * rcy) / i2
@@ -81,18 +113,20 @@ def rhs(mode, t, z, ctx, scene, rec, out):
     """Write dz/dt of the mode's compact state z into out."""
     a_x, a_y = ground(t, scene.floor, rec)
     g_e = G + a_y
-    b, h, i2 = scene.body
+    body = scene.body
     contact = scene.contact
     if mode == SLIDE:                                  # (2): u' = -a_x - mu_k g_e sgn(u)
+        sigma = ctx[CTX_SIGMA]
         out[0] = z[1]
-        out[1] = -a_x - contact.mu_k * g_e * ctx[CTX_SIGMA]
+        out[1] = -a_x - sliding_friction(sigma, body, contact) * g_e * sigma
     elif mode == ROTATION:                             # (3), theta'' only
-        rcx, rcy = corner(ctx[CTX_S], z[0], b, h)
+        s = ctx[CTX_S]
+        rcx, rcy = corner(s, z[0], body)
         out[0] = z[1]
-        out[1] = (g_e * rcx - a_x * rcy) / (i2 + b * b + h * h)
+        out[1] = (g_e * rcx - a_x * rcy) / pivot_inertia(s, body)
     elif mode == SLIDE_ROTATION:
         thdd, udd, N, D = slide_rotation_dynamics(z[0], z[1], ctx[CTX_S], ctx[CTX_SIGMA],
-                                                  a_x, g_e, b, h, i2, contact.mu_edge_k)
+                                                  a_x, g_e, body, contact.mu_edge_k)
         out[0] = z[1]
         out[1] = thdd
         out[2] = z[3]
@@ -114,7 +148,7 @@ def rhs(mode, t, z, ctx, scene, rec, out):
 @jit
 def to_full(mode, z, ctx, body, q):
     """Fill the full state q = (x, y, theta, u, v, omega) from the compact state z."""
-    b, h = body.b, body.h
+    h = body.h
     if mode == REST:
         q[IX] = ctx[CTX_X]
         q[IY] = h
@@ -132,7 +166,7 @@ def to_full(mode, z, ctx, body, q):
     elif mode == ROTATION or mode == SLIDE_ROTATION:
         theta = z[0]
         omega = z[1]
-        rcx, rcy = corner(ctx[CTX_S], theta, b, h)
+        rcx, rcy = corner(ctx[CTX_S], theta, body)
         q[ITHETA] = theta
         q[IOMEGA] = omega
         q[IY] = -rcy
@@ -158,7 +192,6 @@ def to_full(mode, z, ctx, body, q):
 @jit
 def from_full(mode, q, ctx, body, z):
     """Pack the full state q into the compact state z of a mode (sets the pivot in ctx)."""
-    b, h = body.b, body.h
     if mode == REST:
         ctx[CTX_X] = q[IX]
     elif mode == SLIDE:
@@ -168,7 +201,7 @@ def from_full(mode, q, ctx, body, z):
         z[0] = q[ITHETA]
         z[1] = q[IOMEGA]
         if mode == ROTATION:
-            ctx[CTX_X] = q[IX] + corner(ctx[CTX_S], q[ITHETA], b, h)[0]
+            ctx[CTX_X] = q[IX] + corner(ctx[CTX_S], q[ITHETA], body)[0]
         else:
             z[2] = q[IX]
             z[3] = q[IU]
@@ -183,9 +216,9 @@ def from_full(mode, q, ctx, body, z):
 
 
 @jit(inline="always")
-def corner_velocity(q, s, b, h):
+def corner_velocity(q, s, body):
     """Velocity (V_cx, V_cy) of corner s: V_c = (u - omega r_cy, v + omega r_cx)."""
-    rcx, rcy = corner(s, q[ITHETA], b, h)
+    rcx, rcy = corner(s, q[ITHETA], body)
     return q[IU] - q[IOMEGA] * rcy, q[IV] + q[IOMEGA] * rcx
 
 

@@ -1,7 +1,10 @@
 """Rest without stepping: the next instant at which the floor can move a resting body.
 
-A body at rest leaves rest when |a_x| > mu_s g_e, |a_x| > (b/h) g_e or g_e < 0
-(PHYSICS.md 1.3), i.e. when phi(t) = |a_x| - kappa g_e > 0 with kappa = min(mu_s, b/h).
+A body at rest leaves rest when |a_x| > mu_s g_e, |a_x| > (b_s/h) g_e or g_e < 0
+(PHYSICS.md 1.3; s the corner the floor drives the body towards: b1 for a_x > 0, b2 for
+a_x < 0), i.e. when phi(t) = max(a_x - kappa_+ g_e, -a_x - kappa_- g_e) > 0 with
+kappa_+ = min(mu_s, b1/h) and kappa_- = min(mu_s, b2/h) (|a_x| - kappa g_e for a symmetric
+body).
 The floor is scanned in intervals that hold at most one extremum of a smooth component
 (1/8 of its period) and never cross a break of the motion; where a sampled slope bound
 allows phi to rise above zero inside an interval, its peak is found by golden-section
@@ -18,16 +21,18 @@ from .tolerances import BREAK_GUARD, PEAK_XTOL, REST_XTOL
 
 @jit
 def rest_threshold(body, contact):
-    """kappa: rest ends when |a_x| > kappa g_e."""
-    return min(contact.mu_s, body.b / body.h)
+    """(kappa_+, kappa_-): rest ends when a_x > kappa_+ g_e or -a_x > kappa_- g_e."""
+    return min(contact.mu_s, body.b1 / body.h), min(contact.mu_s, body.b2 / body.h)
 
 
 @jit
 def _phi(t, args):
-    """|a_x| - kappa g_e at t (args = (kappa, floor, rec)); rest ends where it is > 0."""
+    """max(a_x - kappa_+ g_e, -a_x - kappa_- g_e) at t (args = (kappa, floor, rec));
+    rest ends where it is > 0."""
     kappa, floor, rec = args
     a_x, a_y = ground(t, floor, rec)
-    return abs(a_x) - kappa * (G + a_y)
+    g_e = G + a_y
+    return max(a_x - kappa[0] * g_e, -a_x - kappa[1] * g_e)
 
 
 _crossing = bisect(_phi)

@@ -2,9 +2,8 @@
 
 A scene comes to the compiled code as one record of ``codes.SCENE_DTYPE`` (fields by name,
 passed as one pointer).  ``scene_of`` makes the
-``Scene``: the ``Body`` (half sizes and inertia) and the ``Contact`` law (friction and
-restitution, with the surface's kinetic friction as flat sliding sees it) beside the row's
-floor, solver and initial records.  The record samples a floor component may point into
+``Scene``: the ``Body`` (the corners' distances from G and the inertia) and the ``Contact``
+law (friction and restitution) beside the row's floor, solver and initial records.  The record samples a floor component may point into
 are one array shared by a chunk of scenes, passed beside the scene as ``rec``.  Arrays
 stay out of the scene on purpose: numba counts references to every array a compiled
 function receives or takes out of a record, and passes a record of many scalars as many
@@ -12,7 +11,8 @@ arguments; in the step loop either would cost as much as the physics.
 ``WORK_DTYPE`` holds every buffer of a scene in one allocation; a ``Step`` is one taken
 step, which the dense output, the event search and the extremes read.  ``WORK_DTYPE`` holds every
 buffer of a scene in one record, whose array fields carry no reference count.  SI units, per unit mass;
-b and h are the half-breadth and half-height (PHYSICS.md 1.1).
+b1, b2 are the distances from G to the corners along the base and h the height of G
+(PHYSICS.md 1.1, docs/bodies.md).
 """
 from collections import namedtuple
 
@@ -26,16 +26,18 @@ from .codes import LANDING_FLAT, N_CTX, N_MODES, N_STATE
 from .extremes import N_EXTREMES
 from .integrate import DENSE_DEGREE
 from .tableaus import MAX_STAGES
-from .transitions import flat_sliding_friction
 
-Body = namedtuple("Body", "b h i2")
-Body.__doc__ = "Half-breadth b and half-height h [m], squared radius of gyration i2 [m^2]."
+Body = namedtuple("Body", "b1 b2 h i2")
+Body.__doc__ = """Horizontal distances b1, b2 from G to the left and right corner, height h of G
+above the base [m], squared radius of gyration about G i2 [m^2] (docs/bodies.md; symmetric:
+b1 = b2 = B/2, h = H/2)."""
 
 Contact = namedtuple("Contact", "mu_s mu_k mu_edge_s mu_edge_k e_x e_y landing",
                      defaults=(float(LANDING_FLAT),))
 Contact.__doc__ = """Friction of the surface (mu_s, mu_k: face contact) and of the edge
 (mu_edge_s, mu_edge_k: one corner), tangential and normal restitution e_x, e_y, and the law
-of a landing after a translation jump (a ``codes.LANDING_*`` code, default flat)."""
+of a landing after a translation jump (a ``codes.LANDING_*`` code, default flat).  Flat
+sliding sees mu_k through ``motion.sliding_friction``."""
 
 Scene = namedtuple("Scene", "body contact floor solver initial")
 Scene.__doc__ = """``Body`` and ``Contact`` (derived from the row), and the row's own records of
@@ -78,11 +80,10 @@ f(t + dt, z_new) and the coefficients D of its dense output (``integrate.fit_den
 def scene_of(row):
     """The ``Scene`` of a scene row (a record of ``codes.SCENE_DTYPE``)."""
     b = 0.5 * row.body.B
-    h = 0.5 * row.body.H
     c = row.contact
-    contact = Contact(c.mu_s, flat_sliding_friction(c.mu_k, c.mu_edge_k, b, h), c.mu_edge_s,
-                      c.mu_edge_k, c.e_x, c.e_y, c.landing)
-    return Scene(Body(b, h, row.body.i2), contact, row.floor, row.solver, row.initial)
+    contact = Contact(c.mu_s, c.mu_k, c.mu_edge_s, c.mu_edge_k, c.e_x, c.e_y, c.landing)
+    return Scene(Body(b + row.body.x_g, b - row.body.x_g, row.body.y_g, row.body.i2), contact,
+                 row.floor, row.solver, row.initial)
 
 
 @intrinsic

@@ -36,22 +36,12 @@ from .events import (EV_GAP_L, EV_JUMP_OVERTURN, EV_LIFTOFF, EV_OVERTURN, EV_PAI
                      EV_SLIP, EV_STOP)
 from .face_impact import face_impact, landing_impact
 from .ground import G, ground
-from .motion import corner, corner_velocity, rotation_dynamics, slide_rotation_dynamics
+from .motion import (corner, corner_velocity, half_base, rotation_dynamics,
+                     slide_rotation_dynamics, sliding_friction)
 from .tolerances import ROCKING_ROUNDOFF
 from .zeno import closing_speed, leaves, rocking_closes, stop_corner
 
 NOT_AN_IMPACT = -1       # impact flags of an event that was not an impact
-
-
-@jit
-def flat_sliding_friction(mu_k, mu_edge_k, b, h):
-    """The surface's kinetic friction as flat sliding sees it.
-
-    With mu_k > b/h >= mu_edge_k flat sliding would tip the body onto its leading corner,
-    where the lower edge friction tips it straight back.  The body then slides flat on the
-    verge of tipping, with the friction that holds theta'' = 0 there: b/h.
-    """
-    return min(mu_k, max(b / h, mu_edge_k))
 
 
 @jit
@@ -62,17 +52,19 @@ def mu_required(A, b, h, i2):
 
 @jit
 def leave_rest(a_x, g_e, body, contact):
-    """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b/h."""
-    b, h, i2 = body
+    """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b_s/h, tan alpha of the
+    corner s the floor drives the body towards (docs/bodies.md)."""
+    h, i2 = body.h, body.i2
     mu_s = contact.mu_s
     if g_e <= 0.0:
         return TRANSLATION_JUMP, 0.0, 0.0
     A = abs(a_x) / g_e
+    drive = math.copysign(1.0, a_x)
+    s = -drive                         # a_x > 0 tips the body about its left corner
+    b = half_base(s, body)
     beta = b / h
     if A <= mu_s and A <= beta:
         return REST, 0.0, 0.0
-    drive = math.copysign(1.0, a_x)
-    s = -drive                         # a_x > 0 tips the body about its left corner
     if A > beta:
         if mu_s >= mu_required(A, b, h, i2):
             return ROTATION, s, 0.0
@@ -85,9 +77,10 @@ def leave_rest(a_x, g_e, body, contact):
 
 @jit
 def start_slide(sigma, body, contact):
-    """Flat sliding with sgn(u) = sigma; with mu_k > b/h the body trips over its leading
-    corner instead (one normal force would turn negative, PHYSICS 1.2 (2))."""
-    if contact.mu_k > body.b / body.h:
+    """Flat sliding with sgn(u) = sigma; with mu_k > b_s/h (s = sigma, the leading corner)
+    the body trips over that corner instead (one normal force would turn negative, PHYSICS
+    1.2 (2))."""
+    if sliding_friction(sigma, body, contact) > half_base(sigma, body) / body.h:
         return SLIDE_ROTATION, sigma, sigma
     return SLIDE, 0.0, sigma
 
@@ -100,19 +93,18 @@ def select_corner(q, s, a_x, g_e, body, contact, v_tol):
     closed by the plastic impulse that stops it, so the state satisfies the contact
     constraints of the mode it enters without gaining energy.
     """
-    b, h, i2 = body
-    Vx, Vy = corner_velocity(q, s, b, h)
+    Vx, Vy = corner_velocity(q, s, body)
     if leaves(Vy, v_tol):
         return ROTATION_JUMP, s, 0.0
     stop_corner(q, s, body, not leaves(abs(Vx), v_tol))
     if leaves(abs(Vx), v_tol):
         sigma = math.copysign(1.0, Vx)
-        N = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, g_e, b, h, i2,
+        N = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, g_e, body,
                                     contact.mu_edge_k)[2]
         if N <= 0.0:
             return ROTATION_JUMP, s, 0.0
         return SLIDE_ROTATION, s, sigma
-    thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)
+    thdd, F, N = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, body)
     if N > 0.0:
         if abs(F) <= contact.mu_edge_s * N:
             return ROTATION, s, 0.0
@@ -130,14 +122,12 @@ def unstick(q, s, sigma_f, a_x, g_e, body, mu):
     tangential acceleration u'' - theta'' r_cy - omega^2 r_cx points; sigma_f (against the
     sticking friction force) when neither direction is consistent.
     """
-    b, h, i2 = body
     theta, omega = q[ITHETA], q[IOMEGA]
-    rcx, rcy = corner(s, theta, b, h)
+    rcx, rcy = corner(s, theta, body)
     if g_e + omega * omega * rcy <= 0.0:
         return ROTATION_JUMP, s, 0.0
     for sigma in (sigma_f, -sigma_f):
-        thdd, udd, N, D = slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, b, h, i2,
-                                                  mu)
+        thdd, udd, N, D = slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, body, mu)
         if N > 0.0 and D > 0.0 and sigma * (udd - thdd * rcy - omega * omega * rcx) > 0.0:
             return SLIDE_ROTATION, s, sigma
     return SLIDE_ROTATION, s, sigma_f
@@ -151,20 +141,20 @@ def select_face(q, a_x, g_e, body, contact, solver):
     to face contact.  A face contact sets q to it in place (omega = v = 0, u = the base's
     slip velocity).
     """
-    b, h, i2 = body
     v_tol = closing_speed(solver.zeno_dt)
-    if abs(q[IOMEGA]) * b <= ROCKING_ROUNDOFF * (abs(q[IU]) + abs(q[IV])):
+    if abs(q[IOMEGA]) * 0.5 * (body.b1 + body.b2) <= ROCKING_ROUNDOFF * (abs(q[IU])
+                                                                      + abs(q[IV])):
         q[IOMEGA] = 0.0                 # round-off of a rotation-free impulse, not rocking
     omega = q[IOMEGA]
-    VL = corner_velocity(q, -1.0, b, h)[1]
-    VR = corner_velocity(q, 1.0, b, h)[1]
+    VL = corner_velocity(q, -1.0, body)[1]
+    VR = corner_velocity(q, 1.0, body)[1]
     if leaves(VL, v_tol) and leaves(VR, v_tol):
         if abs(omega) > 0.0:
             return ROTATION_JUMP, 0.0, 0.0
         return TRANSLATION_JUMP, 0.0, 0.0
     if omega != 0.0:
         s = -1.0 if omega > 0.0 else 1.0          # omega > 0 lifts the right corner
-        thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, b, h, i2)[0]
+        thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, body)[0]
         if not rocking_closes(omega, thdd, solver.zeno_dt):
             m, s2, sigma = select_corner(q, s, a_x, g_e, body, contact, v_tol)
             if s * q[IOMEGA] < 0.0:               # the closure left it rocking about s
@@ -185,7 +175,6 @@ def select_face(q, a_x, g_e, body, contact, solver):
 def initial_mode(q, scene, rec):
     """Full initial state q (x = 0) and (mode, s, sigma) from the scene's initial values."""
     body = scene.body
-    b, h = body.b, body.h
     theta, omega, lift = scene.initial.theta, scene.initial.omega, scene.initial.lift
     q[IX] = 0.0
     q[ITHETA] = theta
@@ -195,18 +184,18 @@ def initial_mode(q, scene, rec):
     a_x, a_y = ground(0.0, scene.floor, rec)
     g_e = G + a_y
     if lift > 0.0:
-        q[IY] = lift - min(corner(-1.0, theta, b, h)[1], corner(1.0, theta, b, h)[1])
+        q[IY] = lift - min(corner(-1.0, theta, body)[1], corner(1.0, theta, body)[1])
         if theta != 0.0 or omega != 0.0:
             return ROTATION_JUMP, 0.0, 0.0
         return TRANSLATION_JUMP, 0.0, 0.0
     if theta != 0.0 or omega != 0.0:
         s = -math.copysign(1.0, theta if theta != 0.0 else omega)
-        rcx, rcy = corner(s, theta, b, h)
+        rcx, rcy = corner(s, theta, body)
         q[IY] = -rcy
         q[IV] = -omega * rcx          # the contact corner does not move vertically
         return select_corner(q, s, a_x, g_e, body, scene.contact,
                              closing_speed(scene.solver.zeno_dt))
-    q[IY] = h
+    q[IY] = body.h
     if q[IV] > 0.0:
         return TRANSLATION_JUMP, 0.0, 0.0
     q[IV] = 0.0
@@ -238,7 +227,6 @@ def on_event(k, mode, t, q, ctx, scene, rec):
     the event was not an impact.
     """
     body, contact = scene.body, scene.contact
-    b, h, i2 = body
     a_x, a_y = ground(t, scene.floor, rec)
     g_e = G + a_y
     s = ctx[CTX_S]
@@ -252,10 +240,10 @@ def on_event(k, mode, t, q, ctx, scene, rec):
         if k == EV_LIFTOFF:
             return ROTATION_JUMP, 0.0, 0.0, OK, NOT_AN_IMPACT
         if k == EV_SLIP and mode == ROTATION:
-            F = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, b, h, i2)[1]
+            F = rotation_dynamics(q[ITHETA], q[IOMEGA], s, a_x, g_e, body)[1]
             return SLIDE_ROTATION, s, -math.copysign(1.0, F), OK, NOT_AN_IMPACT
         if k == EV_SLIP:                                # the slipping corner stops
-            q[IU] = q[IOMEGA] * corner(s, q[ITHETA], b, h)[1]
+            q[IU] = q[IOMEGA] * corner(s, q[ITHETA], body)[1]
             m, s2, sg2 = select_corner(q, s, a_x, g_e, body, contact, v_tol)
             return m, s2, sg2, OK, NOT_AN_IMPACT
         q[ITHETA] = 0.0                                 # EV_IMPACT: the other corner strikes
@@ -273,11 +261,11 @@ def on_event(k, mode, t, q, ctx, scene, rec):
     if k == EV_JUMP_OVERTURN:
         return mode, s, sigma, OVERTURNED, NOT_AN_IMPACT
     sc = -1.0 if k == EV_GAP_L else 1.0
-    q[IY] = -corner(sc, q[ITHETA], b, h)[1]
+    q[IY] = -corner(sc, q[ITHETA], body)[1]
     flags = corner_impact(q, sc, body, contact)
     if flags & IMPACT_PAINLEVE:
         return mode, s, sigma, PAINLEVE, flags
-    if leaves(corner_velocity(q, sc, b, h)[1], v_tol):   # still airborne
+    if leaves(corner_velocity(q, sc, body)[1], v_tol):   # still airborne
         return ROTATION_JUMP, 0.0, 0.0, OK, flags
     m, s2, sg2 = select_corner(q, sc, a_x, g_e, body, contact, v_tol)
     return m, s2, sg2, OK, flags
@@ -289,8 +277,7 @@ def painleve_at_entry(mode, s, sigma, t, q, scene, rec):
     PHYSICS 3.2)."""
     if mode != SLIDE_ROTATION:
         return False
-    b, h, i2 = scene.body
     a_x, a_y = ground(t, scene.floor, rec)
-    D = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, G + a_y, b, h, i2,
+    D = slide_rotation_dynamics(q[ITHETA], q[IOMEGA], s, sigma, a_x, G + a_y, scene.body,
                                 scene.contact.mu_edge_k)[3]
     return D <= 0.0

@@ -108,6 +108,12 @@ VARIABLES = {
     "pgv_norm": Variable("float64", "1", "PGV p / (g tan alpha)",
                          comment="p = sqrt(g R / (i^2 + R^2)), sqrt(3 g / 4 R) for a uniform "
                                  "body; Dimitrakopoulos & DeJong (2012)"),
+    "alpha_1": Variable("float64", "rad", "angle at G from the vertical to the left corner",
+                        comment="atan(b1/y_G), b1 = B/2 + x_G; the body tips to the left "
+                                "(overturn_direction +1) about this corner (docs/bodies.md)"),
+    "alpha_2": Variable("float64", "rad", "angle at G from the vertical to the right corner",
+                        comment="atan(b2/y_G), b2 = B/2 - x_G; the body tips to the right "
+                                "(overturn_direction -1) about this corner (docs/bodies.md)"),
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 
@@ -401,7 +407,8 @@ def history_dataset(history, scene, source=None, result=None):
     history : dict of str to ndarray, shape (n,)
         The kernel's history (``t`` and every name of ``HISTORY_VARIABLES``).
     scene : dict
-        The resolved scene (its body's ``B`` and ``H`` become attributes).
+        The resolved scene (its body's ``B``, ``H`` and G, ``x_G`` and ``y_G`` from the middle
+        of the base, become attributes).
     source : str, optional
         The scene file, for the ``source`` attribute.
     result : SceneResult, optional
@@ -417,8 +424,10 @@ def history_dataset(history, scene, source=None, result=None):
     data = {name: ("time", np.asarray(history[name], dtype=var.dtype),
                    variable_attrs(name, HISTORY_VARIABLES))
             for name, var in HISTORY_VARIABLES.items()}
+    body = scene["body"]
+    x_G, y_G = (0.0, body["H"] / 2) if body.get("G") is None else body["G"]
     attrs = {"Conventions": CONVENTIONS, "title": "rigid block on a moving floor: history",
-             "B": scene["body"]["B"], "H": scene["body"]["H"]}
+             "B": body["B"], "H": body["H"], "x_G": x_G, "y_G": y_G}
     if source is not None:
         attrs["source"] = source
     if result is not None:

@@ -45,7 +45,8 @@ MAX_FREQUENCY = 100.0  # Hz
 MAX_FRICTION = 2.0
 
 _SIZES = {"B": "a body {:g} m wide", "H": "a body {:g} m tall",
-          "i_g": "a radius of gyration of {:g} m"}
+          "i_g": "a radius of gyration of {:g} m", "R_1": "G {:g} m from its left corner",
+          "R_2": "G {:g} m from its right corner"}
 _FRICTION = ("mu", "mu_s", "mu_k", "mu_edge_s", "mu_edge_k")
 _SCALING = ("scale_with", "scale", "pga", "pgv")
 
@@ -127,7 +128,7 @@ def body_doubts(entry, path):
     ``path`` (``sites[0].bodies[2]``)."""
     doubts = []
     for key in _SIZES:
-        q = getattr(entry, key)
+        q = getattr(entry, key, None)
         doubt = None if q is None else _quantity_doubt(f"body.{key}", q)
         if doubt is not None:
             doubts.append(doubt._replace(path=f"{path}.{key}"))

@@ -102,12 +102,30 @@ class StrictModel(BaseModel):
 
 
 class Body(StrictModel):
-    """Full breadth ``B`` and height ``H``; ``i_g`` radius of gyration about G (default uniform)."""
+    """Full breadth ``B`` and height ``H``, centre of gravity ``G`` and ``i_g`` radius of
+    gyration about G (default uniform); or, as the precarious-rock literature gives a body,
+    ``alpha_1, alpha_2, R_1, R_2`` (and optionally ``H``), converted into B and G
+    (docs/bodies.md)."""
 
-    B: Length = Field(description="full breadth (b = B/2)")
-    H: Length = Field(description="full height (h = H/2)")
+    model_config = ConfigDict(json_schema_extra={"if": {"not": {"required": ["alpha_1"]}},
+                                                 "then": {"required": ["B", "H"]}})
+
+    B: Optional[Length] = Field(None, description="full breadth (b = B/2); required unless "
+                                                  "alpha_1, alpha_2, R_1, R_2 are given")
+    H: Optional[Length] = Field(None, description="full height (h = H/2); required unless "
+                                                  "the rock form gives G (default 2 y_G)")
+    G: Optional[Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]] = Field(
+        None, description="centre of gravity [x, y] from the middle of the base, x to the "
+                          "right; default [0, H/2]")
     i_g: Optional[Length] = Field(None, description="radius of gyration about the centre of "
-                                                    "gravity G; default a uniform block's")
+                                                    "gravity G; default a uniform block's, "
+                                                    "sqrt((B^2 + H^2)/12)")
+    alpha_1: Optional[Angle] = Field(None, description="angle at G between the vertical and "
+                                                       "the left corner (-x), atan(b1/y_G)")
+    alpha_2: Optional[Angle] = Field(None, description="angle at G between the vertical and "
+                                                       "the right corner (+x), atan(b2/y_G)")
+    R_1: Optional[Length] = Field(None, description="distance from G to the left corner")
+    R_2: Optional[Length] = Field(None, description="distance from G to the right corner")
 
     @field_validator("i_g")
     @classmethod
@@ -116,6 +134,46 @@ class Body(StrictModel):
         if i_g is not None and not math.isfinite(i_g.to_si() * i_g.to_si()):
             raise ValueError("too large: its square leaves the float range")
         return i_g
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        """B and H (and G), or alpha_1, alpha_2, R_1, R_2 turned into B and G: the corners
+        at (-R_1 sin alpha_1, -R_1 cos alpha_1) and (R_2 sin alpha_2, -R_2 cos alpha_2) from G,
+        whose heights must agree (to 1e-9)."""
+        rock = {key: getattr(self, key) for key in ROCK_KEYS}
+        if all(value is None for value in rock.values()):
+            missing = [key for key in ("B", "H") if getattr(self, key) is None]
+            if missing:
+                raise FieldError.several([(key, MISSING, "is required (or give alpha_1, "
+                                                         "alpha_2, R_1, R_2)")
+                                          for key in missing])
+            return self
+        missing = [key for key, value in rock.items() if value is None]
+        if missing:
+            raise FieldError(missing[0], MISSING, "the rock form needs all of alpha_1, "
+                                                  "alpha_2, R_1, R_2")
+        if self.B is not None or self.G is not None:
+            raise FieldError("B" if self.B is not None else "G", MISSING,
+                             "give B and G, or alpha_1, alpha_2, R_1, R_2, not both")
+        a1, a2 = rock["alpha_1"].to_si(), rock["alpha_2"].to_si()
+        if not (0.0 < a1 < math.pi / 2 and 0.0 < a2 < math.pi / 2):
+            raise FieldError("alpha_1" if not 0.0 < a1 < math.pi / 2 else "alpha_2", MISSING,
+                             "must lie between 0 and 90 deg")
+        (b1, h1), (b2, h2) = ((R.to_si() * math.sin(a), R.to_si() * math.cos(a))
+                              for R, a in ((rock["R_1"], a1), (rock["R_2"], a2)))
+        if abs(h1 - h2) > 1e-9 * max(h1, h2):
+            raise FieldError("R_2", str(rock["R_2"]),
+                             f"R_1 cos alpha_1 = {h1:.9g} m and R_2 cos alpha_2 = {h2:.9g} m "
+                             "are both the height of G: they must agree")
+        h = 0.5 * (h1 + h2)
+        self.B = Quantity(b1 + b2, "m", "length")   # in metres: not a bare number written
+        self.G = [Quantity(0.5 * (b1 - b2), "m", "length"), Quantity(h, "m", "length")]
+        if self.H is None:
+            self.H = Quantity(2.0 * h, "m", "length")
+        return self
+
+
+ROCK_KEYS = ("alpha_1", "alpha_2", "R_1", "R_2")
 
 
 class Contact(StrictModel):
@@ -743,7 +801,8 @@ def resolve_scene(scene):
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     b = scene.body
-    body = {"B": b.B.to_si(), "H": b.H.to_si(), "i_g": _si(b.i_g, DEFAULTS["body"]["i_g"])}
+    body = {"B": b.B.to_si(), "H": b.H.to_si(), "i_g": _si(b.i_g, DEFAULTS["body"]["i_g"]),
+            "G": None if b.G is None else [x.to_si() for x in b.G]}
 
     contact = dict(DEFAULTS["contact"])
     for key in contact:
@@ -794,5 +853,6 @@ def _check_packable(resolved, scene):
     node = scene
     for key in path.split("."):
         node = getattr(node, key, None)
-    given = MISSING if node is None else str(node) if isinstance(node, Quantity) else node
+    given = MISSING if node is None else str(node) if isinstance(node, Quantity) else \
+        [str(x) for x in node] if isinstance(node, list) else node
     raise FileProblems([Problem(path, given, f"in SI units: {message.replace('`', '')}")])

@@ -114,7 +114,9 @@ class Quantity:
         Parameters
         ----------
         body : mapping, optional
-            ``{"B": m, "H": m, "i_g": m or None}``; required for body-relative units.
+            ``{"B": m, "H": m, "i_g": m or None, "G": [m, m] or None}``; required for
+            body-relative units (with G off the middle, the smaller side's scale:
+            ``sweep.bodies``).
         """
         if not self.unit:
             return self.value
@@ -122,13 +124,13 @@ class Quantity:
             return self.value * _FIXED[self.unit][1]
         if body is None:
             raise ValueError(f"'{self}' is relative to the body and needs its B and H")
-        B, H, i_g = body["B"], body["H"], body.get("i_g")
+        B, H, i_g, centre = body["B"], body["H"], body.get("i_g"), body.get("G")
         if self.unit == "west":
-            factor = bodies.west_acceleration(B, H)
+            factor = bodies.west_acceleration(B, H, centre=centre)
         elif self.unit == "v_h":
-            factor = bodies.single_shock_velocity(B, H, i_g)
+            factor = bodies.single_shock_velocity(B, H, i_g, centre=centre)
         else:
-            factor = bodies.body_constants(B, H, i_g).alpha
+            factor = bodies.slenderness(B, H, centre)
         return self.value * float(factor)
 
 

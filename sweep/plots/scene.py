@@ -36,11 +36,28 @@ FLOOR_MARKS = 12              # hatch marks under the floor across the animation
 FLOOR = {"a_x": ("horizontal", "tab:red"), "a_y": ("vertical", "tab:green")}
 
 
-def outline(x, y, theta, b, h):
-    """Corners (5 points, closed) of the body with centroid (x, y) at angle theta."""
+def outline(x, y, theta, shape):
+    """Corners (5 points, closed) of the body with G at (x, y) at angle theta; ``shape`` =
+    (left, right, bottom, top): the sides' offsets from G in the body (:func:`body_shape`)."""
     c, s = np.cos(theta), np.sin(theta)
-    local = np.array([[-b, -h], [b, -h], [b, h], [-b, h], [-b, -h]])
+    left, right, bottom, top = shape
+    local = np.array([[left, bottom], [right, bottom], [right, top], [left, top],
+                      [left, bottom]])
     return x + local[:, 0] * c - local[:, 1] * s, y + local[:, 0] * s + local[:, 1] * c
+
+
+def body_shape(ds):
+    """(left, right, bottom, top) offsets of the body's sides from G [m], from the attributes
+    ``B``, ``H`` and G (``x_G``, ``y_G``; default the middle) of a history Dataset."""
+    B, H = float(ds.attrs["B"]), float(ds.attrs["H"])
+    x_G, y_G = float(ds.attrs.get("x_G", 0.0)), float(ds.attrs.get("y_G", 0.5 * H))
+    return -0.5 * B - x_G, 0.5 * B - x_G, -y_G, H - y_G
+
+
+def slenderness(shape):
+    """The smaller side's slenderness angle atan(b_i / y_G) of a body shape [rad]."""
+    left, right, bottom, _ = shape
+    return min(math.atan2(-left, -bottom), math.atan2(right, -bottom))
 
 
 def scene_verdict(ds):
@@ -53,6 +70,7 @@ def scene_verdict(ds):
     return verdict({**{key: attrs[key] for key in (
         "status", "t_overturn", "overturn_direction", "impact_count", "max_abs_theta",
         "max_slip", "max_lift", "t_rest", "B", "H")},
+        "alpha": slenderness(body_shape(ds)),
         "mode_time": dict(zip(modes, np.atleast_1d(attrs["mode_time"]).tolist())),
         "t_final": float(ds["time"].values[-1])})
 
@@ -62,7 +80,7 @@ def quiet_components(ds):
     return [name for name in FLOOR if not np.any(ds[name].values)]
 
 
-def _outlines(ds, b, h):
+def _outlines(ds, shape):
     """Outlines of the body while it moves (from the sample before it leaves rest to the one
     after it comes back for good; the whole history if it never moves), at most
     ``MAX_OUTLINES``: (xs, ys) in cm of shape (n, 5), the time between two, first and last."""
@@ -73,7 +91,7 @@ def _outlines(ds, b, h):
     stride = max(1, int(np.ceil((last - first + 1) / MAX_OUTLINES)))
     pick = slice(first, last + 1, stride)
     xs, ys = outline(ds.x.values[pick, None], ds.y.values[pick, None],
-                     ds.theta.values[pick, None], b, h)
+                     ds.theta.values[pick, None], shape)
     every = stride * (t[1] - t[0]) if t.size > 1 else 0.0
     return xs * 100, ys * 100, every, t[first], t[pick][-1]
 
@@ -130,11 +148,11 @@ def draw_scene(ds, name="", caption=()):
     Dataset (``cf.history_dataset``): a matplotlib Figure titled with what the body did
     (:func:`scene_verdict`) over ``name`` (the scene's file or name), smaller, and captioned
     with the lines of ``caption`` (how each record was read, ``records.provenance_line``)."""
-    b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
-    alpha = math.atan2(b, h)
+    shape = body_shape(ds)
+    alpha = slenderness(shape)
     quiet = quiet_components(ds)
     moving = [component for component in FLOOR if component not in quiet]
-    xs, ys, *times = _outlines(ds, b, h)
+    xs, ys, *times = _outlines(ds, shape)
     # the positions panel as wide as the body's sweep needs beside the 5-inch-high panels
     aspect = np.ptp(xs) / max(np.max(ys) - min(np.min(ys), 0.0), 1e-9)
     fig = plt.figure(figsize=(12, 6.5), layout="constrained")
@@ -270,7 +288,8 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
     from ..runner.progress import Progress, emit
     if not 0 < fps <= MAX_FPS:
         raise ValueError(f"fps must be above 0 and at most {MAX_FPS}, got {fps:g}")
-    b, h = 0.5 * float(ds.attrs["B"]), 0.5 * float(ds.attrs["H"])
+    shape = body_shape(ds)
+    b, h = 0.5 * (shape[1] - shape[0]), 0.5 * (shape[3] - shape[2])
     t = ds["time"].values
     dt = float(t[1] - t[0]) if t.size > 1 else 1.0 / FPS
     t0, t1, how = animation_window(ds, start, end)
@@ -282,7 +301,8 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
     x_abs = d_floor + ds.x.values
     y, theta, mode = ds.y.values, ds.theta.values, ds["mode"].values
     shown = slice(frames[0], frames[-1] + 1)
-    corners_x, corners_y = outline(x_abs[shown, None], y[shown, None], theta[shown, None], b, h)
+    corners_x, corners_y = outline(x_abs[shown, None], y[shown, None], theta[shown, None],
+                                   shape)
     span = max(np.ptp(corners_x) + 2 * b, 3 * h)  # the whole body in view at every frame
     centre = 0.5 * (corners_x.max() + corners_x.min())
     # the floor: a line with hatch marks below it that move with it
@@ -314,8 +334,9 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
                  fontsize=8, color="0.35")
     (floor,) = ax.plot([], [], color="k", lw=1.5)
     (body,) = ax.plot([], [], color="tab:blue", lw=2)
+    (centre_of_gravity,) = ax.plot([], [], "o", color="tab:red", ms=4)
     label = ax.set_title(" ", fontsize=9)
-    moving = [floor, body, *ax.spines.values(), label]  # in the order a full drawing uses
+    moving = [floor, body, centre_of_gravity, *ax.spines.values(), label]  # the drawing order
     for artist in moving:
         artist.set_animated(True)
     canvas = fig.canvas
@@ -323,8 +344,9 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
     background = canvas.copy_from_bbox(fig.bbox)
 
     def frame(k):
-        px, py = outline(x_abs[k], y[k], theta[k], b, h)
+        px, py = outline(x_abs[k], y[k], theta[k], shape)
         body.set_data(px * 100, py * 100)
+        centre_of_gravity.set_data([x_abs[k] * 100], [y[k] * 100])
         floor.set_data(np.r_[centre - span, centre + span, np.nan, hatch_x + d_floor[k]] * 100,
                        np.r_[0.0, 0.0, np.nan, hatch_y] * 100)
         label.set_text(f"t = {t[k]:.2f} s   {MODE_NAMES[int(mode[k])].replace('_', ' ')}")

@@ -39,7 +39,7 @@ GRID_MARGIN = 1.5  # the grid runs from min IM / margin to max IM * margin
 BIN, GRID, TERM = "im_bin", "im_grid", "term"
 LEVEL = "level"  # in the table below: the levels dimension, or BIN
 SURFACE_TERMS = ("intercept", "ln_pga", "ln_pgv")
-EVENTS = ("overturned", "rocked", "slid")
+EVENTS = ("overturned", "overturned_left", "overturned_right", "rocked", "slid")
 
 _IM = None  # units None and "{axis}" in the table: the IM's units and long name
 FRAGILITY_VARIABLES = {
@@ -49,8 +49,10 @@ FRAGILITY_VARIABLES = {
                             comment="cells whose simulation failed (outcome -1)"),
     "im_median": cf.Variable("float64", _IM, "{axis}: median over the members counted",
                              dims=(LEVEL,)),
-    **{name: var for event, text in zip(EVENTS, ("overturned", "rocked (overturned or not)",
-                                                 "slid more than the threshold"))
+    **{name: var for event, text in zip(EVENTS, (
+        "overturned", "overturned to the left (-x, about corner 1: overturn_direction +1)",
+        "overturned to the right (+x, about corner 2: overturn_direction -1)",
+        "rocked (overturned or not)", "slid more than the threshold"))
        for name, var in (
            (f"k_{event}", cf.Variable("int32", "1", f"members that {text}", dims=(LEVEL,))),
            (f"p_{event}", cf.Variable("float64", "1", f"probability that the body {text}",
@@ -143,9 +145,10 @@ class FragilityError(ValueError):
     """A request the dataset cannot answer (an unknown dimension, a missing IM); one line."""
 
 
-Cells = namedtuple("Cells", "dims outcome slid im group_coords level_coords")
+Cells = namedtuple("Cells", "dims outcome slid direction im group_coords level_coords")
 Cells.__doc__ = """A study's cells as (groups, levels, members) arrays: ``dims`` = (group dims,
-levels dim or None, ensemble dims); ``outcome`` int, ``slid`` int or None, ``im`` float;
+levels dim or None, ensemble dims); ``outcome`` int, ``slid`` and ``direction`` (the
+overturning direction) int or None, ``im`` float;
 ``group_coords`` and ``level_coords`` the dataset's coordinates along them (the scalar ones
 with the groups)."""
 
@@ -217,6 +220,8 @@ def cells(ds, over, im, levels):
 
     return Cells(groups + (levels, tuple(over)), arranged(outcome).astype(np.int64),
                  arranged(ds["slid"]).astype(np.int64) if "slid" in ds.variables else None,
+                 arranged(ds["overturn_direction"]).astype(np.int64)
+                 if "overturn_direction" in ds.variables else None,
                  arranged(ds[im]).astype(float), along(groups, scalars=True),
                  along(level_dims, scalars=False))
 
@@ -288,8 +293,12 @@ def fragility(ds, over, im, levels=AUTO, *, bins=DEFAULT_BINS, confidence=0.95,
         with np.errstate(invalid="ignore"):  # NaN IM: no bin, and not counted in one
             level_index = np.clip(np.searchsorted(edges, data.im, side="right") - 1, 0,
                                   bins - 1)
-    events = {"overturned": data.outcome == codes.OVERTURN,
-              "rocked": data.outcome >= codes.ROCKED}
+    overturned = data.outcome == codes.OVERTURN
+    events = {"overturned": overturned}
+    if data.direction is not None:       # each side apart: a body with G off the middle
+        events.update(overturned_left=overturned & (data.direction == 1),
+                      overturned_right=overturned & (data.direction == -1))
+    events["rocked"] = data.outcome >= codes.ROCKED
     if data.slid is not None:
         events["slid"] = data.slid == 1
     arrays = _per_level(data, counted, positive, level_index,

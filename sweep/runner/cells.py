@@ -17,7 +17,7 @@ import numpy as np
 from kernels import api, codes
 
 from .. import cf
-from ..bodies import body_constants, single_shock_velocity, west_acceleration
+from ..bodies import body_constants, body_sides, single_shock_velocity, west_acceleration
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_scene
 from ..groundmotion import applied
@@ -41,8 +41,9 @@ def build_rows(study, cells):
     rec : ndarray
         The shared record buffer (a record used by many cells is stored once:
         ``kernels.api.place_record``).
-    bodies : ndarray, shape (n, 3)
-        B, H [m] and i_g [m] (NaN for a uniform body) of each cell.
+    bodies : ndarray, shape (n, 5)
+        B, H [m], i_g [m] (NaN for a uniform body) and G = (x_G, y_G) [m] (NaN for G in the
+        middle) of each cell.
     motions : ndarray, shape (n, 4)
         PGA, PGV, PGD and significant duration of each cell's horizontal motion
         (``groundmotion.applied.peaks``).
@@ -51,7 +52,7 @@ def build_rows(study, cells):
         (loaded, resolved or packed); its row (every field) and body are NaN.
     """
     rows = api.scene_rows(len(cells))
-    bodies = np.empty((len(cells), 3))
+    bodies = np.empty((len(cells), 5))
     motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
     records, problems = [], {}
     for k, index in enumerate(cells):
@@ -63,7 +64,8 @@ def build_rows(study, cells):
             rows[k], bodies[k], problems[k] = np.nan, np.nan, str(err)
             continue
         body = resolved["body"]
-        bodies[k] = body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"]
+        bodies[k] = (body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"],
+                     *((np.nan, np.nan) if body["G"] is None else body["G"]))
         motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
     return rows, api.record_buffer(records), bodies, motions, problems
 
@@ -78,12 +80,19 @@ def summarize(results, bodies, motions):
     outcome = np.where(failed, codes.FAILED,
                        np.where(overturned, codes.OVERTURN,
                                 np.where(theta > 0, codes.ROCKED, codes.NO_ROCKING)))
-    B, H, i_g = bodies.T
-    v_H = np.array([single_shock_velocity(b, h, None if np.isnan(i) else i)
-                    for b, h, i in bodies], dtype=np.float64).reshape(-1)
-    p = np.array([body_constants(b, h, None if np.isnan(i) else i).p
-                  for b, h, i in bodies], dtype=np.float64).reshape(-1)
-    west = west_acceleration(B, H)  # g tan(alpha)
+    B, H = bodies[:, 0], bodies[:, 1]
+    i_g = [None if np.isnan(i) else i for i in bodies[:, 2]]
+    centre = [None if np.isnan(x) else (x, y) for x, y in bodies[:, 3:]]
+    sides = [body_sides(*body) for body in zip(B, H, centre, i_g)]
+    # one number per body: the smaller side's (sweep.bodies), g tan(alpha), v_H and p
+    west = np.array([west_acceleration(b, h, centre=c) for b, h, c in zip(B, H, centre)],
+                    dtype=np.float64).reshape(-1)
+    v_H = np.array([single_shock_velocity(b, h, i, centre=c)
+                    for b, h, i, c in zip(B, H, i_g, centre)], dtype=np.float64).reshape(-1)
+    p = np.array([body_constants(b, h, i).p if c is None else
+                  (s.p1 if s.alpha_1 <= s.alpha_2 else s.p2)
+                  for b, h, i, c, s in zip(B, H, i_g, centre, sides)],
+                 dtype=np.float64).reshape(-1)
     pga, pgv, pgd, d5_95 = motions.T
     out = {
         "outcome": outcome,
@@ -101,11 +110,13 @@ def summarize(results, bodies, motions):
         "steps": results["steps"],
         "energy_clamps": results["energy_clamps"],
         "f_at_overturn": results["f_at_overturn"],
-        "a_norm_at_overturn": results["a_at_overturn"] / west_acceleration(B, H),
+        "a_norm_at_overturn": results["a_at_overturn"] / west,
         "v_norm_at_overturn": results["v_at_overturn"] / v_H,
         "slid": np.where(failed, -1, results["max_slip"] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
+        "alpha_1": np.array([s.alpha_1 for s in sides], dtype=np.float64).reshape(-1),
+        "alpha_2": np.array([s.alpha_2 for s in sides], dtype=np.float64).reshape(-1),
     }
     return {name: np.ascontiguousarray(a, dtype=cf.VARIABLES[name].dtype)
             for name, a in out.items()}

@@ -8,7 +8,7 @@ from collections import namedtuple
 
 from kernels.api import MAX_LOG, SceneResult
 
-from ..bodies import G
+from ..bodies import G, describe, slenderness
 from ..groundmotion import applied
 from ..io.plausibility import scene_doubts
 from ..io.problems import FileProblems, Problem, warn
@@ -23,17 +23,18 @@ JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact
 MOTION_KEYS = ("pga", "pgv", "pgd")
 # The JSON's order: the verdict and the numbers that sum the scene up, then the per-impact arrays.
 SUMMARY_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "overturn_towards",
-                "message", "max_abs_theta", "alpha", "max_slip", "max_travel", "max_lift",
+                "message", "max_abs_theta", "alpha", "body", "max_slip", "max_travel", "max_lift",
                 *MOTION_KEYS, "t_rest", "mode_time", "impact_count", "impact_log_truncated",
                 "energy_clamps", "steps", "cpu_s")
 IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
 PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file was read
 
 Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS
-                    + ("B", "H", "alpha", "overturn_towards", PROVENANCE_KEY))
+                    + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
 ``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), the body:
-breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad],
+breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad] (the
+smaller side's with G off the middle), the ``body`` in both forms (``bodies.describe``),
 ``overturn_towards``: the way the body fell, ``"-x"`` (to the left, ``overturn_direction``
 +1) or ``"+x"``, None when it stands (``verdict.fall_side``), and the ``provenance`` of each
 floor component that is a record (``records.floor_provenance``)."""
@@ -62,9 +63,11 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     if history:
         _check_history(resolved, None if isinstance(scene, dict) else scene)
     motion = applied.peaks(resolved["excitation"]["horizontal"])
-    B, H = resolved["body"]["B"], resolved["body"]["H"]
+    body = resolved["body"]
+    B, H = body["B"], body["H"]
     ran = run_scene(resolved, history=history, max_log=max_log)
-    result = Result(*ran, *motion[:3], B, H, math.atan2(B, H),
+    alpha = math.atan2(B, H) if body["G"] is None else float(slenderness(B, H, body["G"]))
+    result = Result(*ran, *motion[:3], B, H, alpha, describe(B, H, body["G"], body["i_g"]),
                     fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]))
     if history:
         from ..cf import history_dataset

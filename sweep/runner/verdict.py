@@ -45,7 +45,8 @@ def verdict(results):
     ----------
     results : mapping
         ``status``, ``t_overturn`` [s], ``overturn_direction`` (+1, -1), ``impact_count``,
-        ``max_abs_theta`` [rad], ``B`` and ``H`` [m], ``max_slip`` [m] (of the base),
+        ``max_abs_theta`` [rad], ``alpha`` [rad] (the smaller side's slenderness angle;
+        default atan(B/H) from ``B`` and ``H`` [m]), ``max_slip`` [m] (of the base),
         ``max_lift`` [m], ``mode_time`` ({mode name:
         s}), ``t_rest`` [s, or None or NaN] and ``t_final`` [s] (the ``Result`` of
         ``sweep.runner.simulate`` as a dict has them all).
@@ -63,7 +64,7 @@ def verdict(results):
         return "stood still: the body never left rest"
     else:
         head = "stood"
-    alpha = math.atan2(results["B"], results["H"])
+    alpha = results.get("alpha") or math.atan2(results["B"], results["H"])
     slip = results["max_slip"]
     parts = [f"max |θ|/α {results['max_abs_theta'] / alpha:.2g}",
              f"max slip {length_text(slip)}" if slip > SHOWN_LENGTH else "no slip"]

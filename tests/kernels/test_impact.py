@@ -303,7 +303,7 @@ def test_corner_impact_direct_random():
         mu_s = rng.uniform(0, 1.3)
         mu_k = mu_s * rng.uniform(0.5, 1.0)
         pre = q.copy()
-        flags = corner_impact(q, s, Body(b, h, i2), Contact(0.0, 0.0, mu_s, mu_k, e_x, e_y))
+        flags = corner_impact(q, s, Body(b, b, h, i2), Contact(0.0, 0.0, mu_s, mu_k, e_x, e_y))
         msg = f"case {n}: pre {pre}, s {s}, e {e_x, e_y}, mu {mu_s, mu_k}, flags {flags}"
         if flags & IMPACT_PAINLEVE:
             continue
@@ -343,7 +343,7 @@ def test_face_impact_energy_random():
     """Impacts at theta = 0 (flat landing, rocking impact) never gain energy (2.2 step 6)."""
     for n, b, h, i2, q, e_x, e_y, mu in _face_cases(2000, 11):
         pre = q.copy()
-        flags = face_impact(q, Body(b, h, i2), Contact(*mu, e_x, e_y))
+        flags = face_impact(q, Body(b, b, h, i2), Contact(*mu, e_x, e_y))
         if not flags & IMPACT_PAINLEVE:
             assert _ke(q, i2) <= _ke(pre, i2) * (1 + 1e-12), (n, pre, e_x, e_y, mu, flags)
 
@@ -355,7 +355,7 @@ def test_face_impact_no_penetration_random():
     for n, b, h, i2, q, e_x, e_y, mu in _face_cases(2000, 11):
         V_min = min(q[4] - q[5] * b, q[4] + q[5] * b)
         pre = q.copy()
-        flags = face_impact(q, Body(b, h, i2), Contact(*mu, e_x, e_y))
+        flags = face_impact(q, Body(b, b, h, i2), Contact(*mu, e_x, e_y))
         if flags & IMPACT_PAINLEVE:
             continue
         VL, VR = q[4] - q[5] * b, q[4] + q[5] * b

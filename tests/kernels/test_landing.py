@@ -62,7 +62,7 @@ def test_face_friction_closed_form(B, H, u, v, e_x, e_y, mu_s, mu_k):
     c = const(B, H)
     up, vp, wp, slipped = face_friction(u, v, e_x, e_y, mu_s, mu_k, c.b, c.h, c.i2)
     assert min(vp - c.b * wp, vp + c.b * wp) > 0.0     # (L4) does not hold: no corner strikes
-    q, flags = _land(u, v, Body(c.b, c.h, c.i2), e_x, e_y, mu_s, mu_k)
+    q, flags = _land(u, v, Body(c.b, c.b, c.h, c.i2), e_x, e_y, mu_s, mu_k)
     np.testing.assert_allclose(q[3:], [up, vp, wp], rtol=1e-13, atol=1e-15)
     assert bool(flags & SLIPPED) == slipped
     assert math.copysign(1.0, wp) == -math.copysign(1.0, u)   # tilts forward (L0): M = h P_t
@@ -82,7 +82,7 @@ def test_eq8_when_the_leading_corner_strikes(B, H, u, v):
     rocks about it with omega = -h u-/(i^2 + r^2), Ishiyama's Eq. (8) (L5): the corner stops,
     so G moves at u = h^2 u-/(i^2 + r^2), v = b h |u-|/(i^2 + r^2)."""
     c = const(B, H)
-    body = Body(c.b, c.h, c.i2)
+    body = Body(c.b, c.b, c.h, c.i2)
     w = face_friction(u, v, 0.0, 0.0, 1.0, 1.0, c.b, c.h, c.i2)[2]
     assert c.b * abs(w) > 0.0                          # (L4) with e_y = 0: the corner strikes
     q, flags = _land(u, v, body, 0.0, 0.0, 1.0, 1.0)
@@ -102,7 +102,7 @@ def _cases():
                 for mu in (0.1, 0.4, 1.0):
                     for u in (-2.0, 0.3, 1.0, 3.0):
                         for v in (-0.3, -1.7, -3.0):
-                            yield Body(c.b, c.h, c.i2), u, v, e_x, e_y, mu
+                            yield Body(c.b, c.b, c.h, c.i2), u, v, e_x, e_y, mu
 
 
 @pytest.mark.parametrize("landing", [LANDING_FACE_FRICTION, LANDING_CORNER])
@@ -114,13 +114,13 @@ def test_landing_never_gains_energy(landing):
         msg = (body, u, v, e_x, e_y, mu, flags)
         assert not flags & IMPACT_PAINLEVE, msg
         assert _ke(q, body.i2) <= 0.5 * (u * u + v * v) * (1.0 + 1e-12), msg
-        assert min(q[4] - body.b * q[5], q[4] + body.b * q[5]) >= -1e-12 * abs(v), msg
+        assert min(q[4] - body.b1 * q[5], q[4] + body.b2 * q[5]) >= -1e-12 * abs(v), msg
 
 
 def test_energy_loss_closed_form():
     """A sticking base loses (1 - e_y^2) v-^2/2 + (1 - e_x^2) u-^2 i^2/(2 (i^2 + h^2)) (L6)."""
     c = const(0.1, 0.3)
-    body = Body(c.b, c.h, c.i2)
+    body = Body(c.b, c.b, c.h, c.i2)
     for e_x, e_y in ((-0.9, 0.2), (-0.5, 0.8), (0.5, 0.9)):
         q, flags = _land(1.0, -1.7152, body, e_x, e_y, 0.4, 0.3)
         loss = 0.5 * (1 - e_y ** 2) * 1.7152 ** 2 + 0.5 * (1 - e_x ** 2) * c.i2 / (c.i2 + c.h ** 2)
@@ -143,8 +143,8 @@ def test_tilt_direction_is_forward_at_the_landing():
     towards u- (sgn omega+ = -sgn u-, (L0)); the normal impulse has no moment."""
     checked = 0
     for body, u, v, e_x, e_y, mu in _cases():
-        up, vp, wp, _ = face_friction(u, v, e_x, e_y, mu, 0.75 * mu, *body)
-        if e_x > -1.0 and min(vp - body.b * wp, vp + body.b * wp) > 0.0:
+        up, vp, wp, _ = face_friction(u, v, e_x, e_y, mu, 0.75 * mu, body.b1, body.h, body.i2)
+        if e_x > -1.0 and min(vp - body.b1 * wp, vp + body.b2 * wp) > 0.0:
             q, _ = _land(u, v, body, e_x, e_y, mu, 0.75 * mu)
             assert np.sign(q[5]) == -np.sign(u) == np.sign(wp)
             checked += 1
@@ -155,7 +155,7 @@ def test_corner_law_tilts_back_without_friction():
     """corner, e_x = -1: the leading corner's normal impulse alone, arm b, tilts the body back,
     omega+ = -(1 + e_y) v- b/(i^2 + b^2) = 9.50 rad/s at Fig. 5's landing (docs/landing.md 3)."""
     c = const(0.1, 0.3)
-    body = Body(c.b, c.h, c.i2)
+    body = Body(c.b, c.b, c.h, c.i2)
     q = np.array([0.0, c.h, 0.0, 1.0, -1.7152, 0.0])
     corner_impact(q, 1.0, body, Contact(0.4, 0.3, 0.4, 0.3, -1.0, 0.2))
     w = 1.2 * 1.7152 * c.b / (c.i2 + c.b ** 2)

@@ -23,14 +23,14 @@ def scene_of(horizontal=None, vertical=None, **contact):
                         records)
     b, h = 0.5 * row.body.B, 0.5 * row.body.H
     c = row.contact
-    scene = SimpleNamespace(floor=row.floor, body=state.Body(b, h, row.body.i2),
+    scene = SimpleNamespace(floor=row.floor, body=state.Body(b, b, h, row.body.i2),
                             contact=state.Contact(*(float(c[name]) for name in c.dtype.names)))
     return scene, api.record_buffer(records)
 
 
 def exit_time(horizontal=None, vertical=None, kappa=0.3, t=0.0, t_stop=10.0):
     scene, rec = scene_of(horizontal, vertical)
-    return rest_skipping.rest_exit(t, t_stop, kappa, scene.floor, rec)
+    return rest_skipping.rest_exit(t, t_stop, (kappa, kappa), scene.floor, rec)
 
 
 def sine(A, f, **kw):
@@ -168,7 +168,7 @@ def test_combined_horizontal_and_vertical():
 
 @pytest.mark.parametrize("mu_s, want", [(0.2, 0.2), (0.5, 1 / 3)])
 def test_rest_threshold(mu_s, want):
-    """kappa = min(mu_s, b/h); the 0.1 x 0.3 block has b/h = 1/3."""
+    """kappa = min(mu_s, b/h) towards each side; the 0.1 x 0.3 block has b/h = 1/3."""
     scene, _ = scene_of(mu_s=mu_s)
     assert rest_skipping.rest_threshold(scene.body, scene.contact) == pytest.approx(
-        want, rel=1e-15)
+        (want, want), rel=1e-15)

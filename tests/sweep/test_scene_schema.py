@@ -53,7 +53,7 @@ def _scene(**excitation):
 
 def test_design_example(tmp_path):
     r = resolve_scene(load_scene(_write(tmp_path, DESIGN_EXAMPLE)))
-    assert r["body"] == {"B": 0.1, "H": 0.3, "i_g": None}
+    assert r["body"] == {"B": 0.1, "H": 0.3, "i_g": None, "G": None}
     assert r["contact"] == {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
                             "e_x": -0.8, "e_y": 0.2, "landing": "face_friction"}
     h = r["excitation"]["horizontal"]
@@ -280,3 +280,47 @@ def test_empty_sections(tmp_path):
         load_scene({"body": None})
     assert [p.path for p in info.value.problems] == ["body.B", "body.H"]
     assert apply_overrides({"contact": None}, {"contact.mu": 0.5}) == {"contact": {"mu": 0.5}}
+
+
+# --- bodies with G off the middle (docs/bodies.md) --------------------------------------------
+
+def test_rock_form_becomes_B_and_G_and_is_echoed_back():
+    """alpha_1, alpha_2, R_1, R_2 -> b_i = R_i sin alpha_i, h = R_i cos alpha_i, B = b1 + b2,
+    G = [(b1 - b2)/2, h], H = 2h; ``sweep.bodies.describe`` gives the four back."""
+    from sweep.bodies import describe
+    a1, a2, R1 = math.radians(20), math.radians(12), 1.2
+    R2 = R1 * math.cos(a1) / math.cos(a2)
+    body = _resolve({"body": {"alpha_1": "20 deg", "alpha_2": "12 deg", "R_1": R1,
+                              "R_2": R2}})["body"]
+    b1, b2, h = R1 * math.sin(a1), R2 * math.sin(a2), R1 * math.cos(a1)
+    assert body["B"] == pytest.approx(b1 + b2, rel=1e-15) and body["H"] == pytest.approx(2 * h)
+    np.testing.assert_allclose(body["G"], [(b1 - b2) / 2, h], rtol=1e-15)
+    echo = describe(body["B"], body["H"], body["G"], body["i_g"])
+    np.testing.assert_allclose([echo[k] for k in ("alpha_1", "alpha_2", "R_1", "R_2")],
+                               [a1, a2, R1, R2], rtol=1e-14)
+    assert echo["i_g_default"] and echo["i_g"] == pytest.approx(
+        math.sqrt((body["B"] ** 2 + body["H"] ** 2) / 12))
+
+
+@pytest.mark.parametrize("body, path", [
+    ({"B": 0.2, "H": 0.6, "G": [0.1, 0.3]}, "body.G"),             # on the right edge
+    ({"B": 0.2, "H": 0.6, "G": [0.0, 0.7]}, "body.G"),             # above the top
+    ({"alpha_1": 0.3, "alpha_2": 0.2, "R_1": 1.0, "R_2": 1.0}, "body.R_2"),   # heights differ
+    ({"alpha_1": 0.3, "R_1": 1.0}, "body.alpha_2"),
+    ({"B": 0.2, "H": 0.6, "alpha_1": 0.3, "alpha_2": 0.2, "R_1": 1.0, "R_2": 1.0}, "body.B"),
+])
+def test_bad_bodies_are_one_problem_each(body, path):
+    with pytest.raises(FileProblems) as info:
+        _resolve({"body": body})
+    assert [p.path for p in info.value.problems] == [path]
+
+
+def test_body_units_take_the_smaller_side():
+    """1 west = g min(b1, b2)/y_G; 1 alpha = min(alpha_1, alpha_2)."""
+    r = _resolve({"body": {"B": 0.2, "H": 0.6, "G": [0.03, 0.25]},
+                  "excitation": {"horizontal": {"kind": "sine", "amplitude": "1 west",
+                                                "frequency": 1}},
+                  "initial": {"theta": "1 alpha"}})
+    assert r["excitation"]["horizontal"]["amplitude"] == pytest.approx(G * 0.07 / 0.25,
+                                                                       rel=1e-15)
+    assert r["initial"]["theta"] == pytest.approx(math.atan2(0.07, 0.25), rel=1e-15)
