@@ -192,7 +192,10 @@ def print_report(outcome):
     for index in np.ndindex(*outcome.shape):
         r, f = outcome.risks[index], outcome.fits[index]
         print(f"{outcome.labels()[index]}:")
-        if f is not None:
+        if f is not None and not f.identifiable and r is not None:
+            print(f"  fragility: a step at {r.median / factor:.3g} {unit}, in the gap where "
+                  f"the stripes separate ({f.reason}); the interval: a step anywhere in it")
+        elif f is not None:
             lo, hi = f.theta_interval
             print(f"  fragility: median {f.theta / factor:.3g} {unit} [{lo / factor:.3g}, "
                   f"{hi / factor:.3g}], beta {f.beta:.3g} [{f.beta_interval[0]:.3g}, "

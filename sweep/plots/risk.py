@@ -3,6 +3,7 @@ hazard curve, the fragility with its band and the stripes' fractions, the risk i
 the IM with the disaggregation of λ_O by segment, and the probability in ``years`` with its
 interval; over a grid of bodies the risk map with the contour of the target probability."""
 import numpy as np
+from matplotlib.colors import LogNorm
 
 from ..probability import risk as risk_integral
 from .style import fit_suptitle, log_axes, save_figure
@@ -71,7 +72,8 @@ def figure_body(outcome, index=()):
         lo, hi = r.probability_interval
         ax_p.bar([0], [r.probability], color="tab:red", width=0.5)
         if np.isfinite(lo):
-            ax_p.errorbar([0], [r.probability], yerr=[[r.probability - lo], [hi - r.probability]],
+            ax_p.errorbar([0], [r.probability], yerr=[[max(r.probability - lo, 0.0)],
+                                                  [max(hi - r.probability, 0.0)]],
                           color="k", capsize=8)
         if outcome.target is not None:
             ax_p.axhline(outcome.target, color="k", ls="--", lw=1,
@@ -113,14 +115,23 @@ def figure_map(outcome):
     else:
         xs, ys = (outcome.body_coords[d][0] for d in dims[:2])
         grid = p if len(dims) == 2 else p.reshape(p.shape[0], p.shape[1], -1)[..., 0]
-        mesh = ax.pcolormesh(xs, ys, grid.T, shading="nearest", cmap=MAP_CMAP)
+        positive = grid[np.isfinite(grid) & (grid > 0)]
+        norm = LogNorm(positive.min(), positive.max()) if positive.size and \
+            positive.max() > 10 * positive.min() else None
+        mesh = ax.pcolormesh(xs, ys, grid.T, shading="nearest", cmap=MAP_CMAP, norm=norm)
+        for i, x in enumerate(xs):
+            for j, y in enumerate(ys):
+                text = "n/a" if not np.isfinite(grid[i, j]) else f"{100 * grid[i, j]:.2g} %"
+                ax.annotate(text, (x, y), xytext=(0, -9), textcoords="offset points",
+                            ha="center", va="top", fontsize=8,
+                            color="0.2" if not np.isfinite(grid[i, j]) else "w")
         fig.colorbar(mesh, ax=ax, label=f"P(overturn in {outcome.years:g} yr)")
         if outcome.target is not None and np.isfinite(grid).sum() >= 4 and \
                 np.nanmin(grid) < outcome.target < np.nanmax(grid):
             ax.contour(xs, ys, grid.T, levels=[outcome.target], colors="w", linewidths=2)
         if outcome.target is not None:
             ok = np.argwhere(grid <= outcome.target)
-            ax.plot(xs[ok[:, 0]], ys[ok[:, 1]], "w*", ms=10,
+            ax.plot(xs[ok[:, 0]], ys[ok[:, 1]], "w*", ms=8, ls="none",
                     label=f"P ≤ {outcome.target:g} (target)")
             if len(ok):
                 ax.legend(loc="best", fontsize=8)

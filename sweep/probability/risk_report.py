@@ -12,7 +12,9 @@ import numpy as np
 
 from .. import cf
 from .._version import __version__
+from . import fit as fitting
 from . import risk as risk_integral
+from .hazard_curve import poe_from_rate
 from . import risk_inputs, stripes as stripe_analysis
 
 STATUS_KNOWN = "known"  # the fragility was given, not fitted
@@ -116,6 +118,10 @@ def compute(spec, folder, say=None, median=None, beta=None):
         if f.identifiable:
             risks[index] = risk_integral.risk(curve, f.theta, f.beta, checked.years,
                                               f.replicates, checked.confidence)
+        elif f.status == fitting.SEPARATED:
+            risks[index] = separated_risk(curve, levels, k[(slice(None),) + index],
+                                          n[(slice(None),) + index], checked.years,
+                                          checked.confidence)
     dims = stripe_analysis.body_dims(datasets[0])
     coords = {d: (np.asarray(datasets[0][d].values, dtype=float),
                   dict(datasets[0][d].attrs)) for d in dims}
@@ -125,6 +131,30 @@ def compute(spec, folder, say=None, median=None, beta=None):
             checked.hazard.source))
     return RiskOutcome(curve, checked.years, checked.target, checked.confidence, fits, risks,
                        dims, coords, plan, k, n, disaggregation, spec.name, checked.site)
+
+
+def separated_risk(curve, levels, k, n, years, confidence):
+    """The risk of stripes that separate (none overturned below a gap, all above it): the
+    maximum-likelihood fragility is then a step (β → 0) somewhere in the gap between the
+    highest level with a standing body x_s and the lowest with an overturned one x_o; the
+    estimate takes the step at sqrt(x_s x_o), as the bootstrap does for such replicates
+    (``fit._estimates``).  The interval is that of a step anywhere between the highest level
+    at which no body overturned and the lowest at which all did, [λ(x_all), λ(x_none)]
+    (a curve's end where there is no such level)."""
+    import dataclasses
+
+    levels = np.asarray(levels, dtype=float)
+    standing = levels[(n - k) > 0].max()
+    overturned = levels[k > 0].min()
+    estimate = risk_integral.risk(curve, float(np.sqrt(standing * overturned)), 0.0, years,
+                                  confidence=confidence)
+    none = levels[(k == 0) & (n > 0)]
+    every = levels[(k == n) & (n > 0)]
+    x_none = none.max() if none.size else curve.levels[0]
+    x_all = every.min() if every.size else curve.levels[-1]
+    bounds = (float(curve.rate(x_all)), float(curve.rate(x_none)))
+    return dataclasses.replace(estimate, rate_interval=bounds, probability_interval=tuple(
+        float(p) for p in poe_from_rate(bounds, years)))
 
 
 def _interval(pair):
@@ -141,7 +171,9 @@ def body_record(outcome, index=()):
     if f is None:
         fragility = {"median": r.median, "beta": r.beta, "status": STATUS_KNOWN}
     else:
-        fragility = {"median": f.theta, "beta": f.beta,
+        separated = f.status == fitting.SEPARATED and r is not None
+        fragility = {"median": r.median if separated else f.theta,
+                     "beta": r.beta if separated else f.beta,
                      "median_interval": list(f.theta_interval),
                      "beta_interval": list(f.beta_interval), "status": f.reason,
                      "stripes": {"levels": [s.level for s in outcome.stripes],
@@ -218,7 +250,7 @@ def to_dataset(outcome, history=""):
             (rows["beta_lower"][index], rows["beta_upper"][index]) = f.beta_interval
         if r is None:
             continue
-        if f is None:
+        if f is None or not f.identifiable:
             rows["theta"][index], rows["beta"][index] = r.median, r.beta
         rows["annual_rate"][index] = r.annual_rate
         rows["annual_rate_lower"][index], rows["annual_rate_upper"][index] = r.rate_interval

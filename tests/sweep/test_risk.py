@@ -111,3 +111,13 @@ def test_nrml_mean_stddev_round_trip(tmp_path, median, beta):
     assert back.median == pytest.approx(median, rel=1e-10)
     assert back.beta == pytest.approx(beta, rel=1e-10)
     assert 'shape="logncdf"' in path.read_text() and 'imt="PGA"' in path.read_text()
+
+
+def test_separated_stripes_give_a_step_in_the_gap():
+    from sweep.probability.risk_report import separated_risk
+
+    curve = HazardCurve("pga", [0.5, 1.5, 3.0, 7.0], [1e-2, 2e-3, 4e-4, 1e-5])
+    levels = np.array([1.0, 2.0, 4.0])
+    r = separated_risk(curve, levels, np.array([0, 0, 5]), np.array([5, 5, 5]), 50.0, 0.95)
+    assert r.annual_rate == pytest.approx(float(curve.rate(math.sqrt(2.0 * 4.0))), rel=1e-12)
+    assert r.rate_interval == pytest.approx((float(curve.rate(4.0)), float(curve.rate(2.0))))
