@@ -228,10 +228,14 @@ def print_report(outcome):
         meeting = [outcome.labels()[i] for i in np.ndindex(*outcome.shape)
                    if outcome.risks[i] is not None
                    and outcome.risks[i].probability <= outcome.target]
+        sure = {outcome.labels()[i] for i in np.ndindex(*outcome.shape)
+                if outcome.risks[i] is not None
+                and outcome.risks[i].probability_interval[1] <= outcome.target}
         print(f"bodies meeting the target ({_pct(outcome.target)} in {outcome.years:g} years): "
-              f"{len(meeting)} of {outcome.risks.size}")
+              f"{len(meeting)} of {outcome.risks.size} ({len(sure)} also with the upper "
+              f"bound of the interval, marked *)")
         for label in meeting:
-            print(f"  {label}")
+            print(f"  {label}{' *' if label in sure else ''}")
 
 
 def _csv_rows(outcome):

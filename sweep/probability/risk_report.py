@@ -192,6 +192,8 @@ def body_record(outcome, index=()):
                   "probability": _interval(r.probability_interval),
                   "replicates": r.replicates},
         meets_target=None if outcome.target is None else bool(r.probability <= outcome.target),
+        meets_target_upper=None if outcome.target is None or not np.isfinite(
+            r.probability_interval[1]) else bool(r.probability_interval[1] <= outcome.target),
         deaggregation={"im_lower": r.lower.tolist(),
                        "im_upper": [None if not np.isfinite(u) else u for u in r.upper],
                        "share": r.shares.tolist(), "share_above_curve": r.share_above,
