@@ -27,8 +27,8 @@ from pathlib import Path
 from typing import Annotated, Any, Literal, Optional, Union
 
 import numpy as np
-from pydantic import AfterValidator, Field, StrictInt, StrictStr, ValidationError, field_validator, \
-    model_validator
+from pydantic import (AfterValidator, Field, StrictInt, StrictStr, ValidationError,
+                      field_validator, model_validator)
 
 from .imt import im_dimension, normalize_im
 from .problems import MISSING, FieldError, FileProblems, join_path, validation_problems
@@ -253,10 +253,13 @@ class Scenario(StrictModel):
 
 
 class Stripes(StrictModel):
-    """Multiple stripes: ``motions`` synthetic motions at each IM level."""
+    """Multiple stripes: ``motions`` synthetic motions at each IM level, or the ``records``
+    of an ensemble (bundled names or files) scaled to each level."""
 
     levels: Any
     motions: Annotated[StrictInt, Field(ge=2, le=MAX_MOTIONS)] = 10
+    records: Optional[Annotated[list[StrictStr], Field(min_length=2, max_length=MAX_MOTIONS)]] \
+        = None
     seed: Seed = 0
     scenario: Optional[Scenario] = None
     vs30: Optional[quantity("velocity", gt=0)] = None
@@ -267,6 +270,18 @@ class Stripes(StrictModel):
     def _levels(cls, value):
         return (LevelList.model_validate(_level_list(value)) if isinstance(value, list)
                 else LevelRange.model_validate(value))
+
+    @model_validator(mode="after")
+    def _records_or_synthetic(self):
+        if self.records is not None:
+            errors = [(key, str(getattr(self, key)), "synthetic motions only: the records are "
+                                                     "the motions")
+                      for key in ("scenario", "vs30") if getattr(self, key) is not None]
+            if len(set(self.records)) < len(self.records):
+                errors.append(("records", self.records, "a record is given twice"))
+            if errors:
+                raise FieldError.several(errors)
+        return self
 
 
 class Fragility(StrictModel):
@@ -314,7 +329,7 @@ class RiskFile(StrictModel):
         if self.stripes is not None:
             if self.scene is None:
                 errors.append(("scene", MISSING, "required with stripes: the body simulated"))
-            if self.hazard.file is not None:
+            if self.hazard.file is not None and self.stripes.records is None:
                 if self.stripes.scenario is None:
                     errors.append((("stripes", "scenario"), MISSING,
                                    "required with a hazard curve file (no disaggregation)"))

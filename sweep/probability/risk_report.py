@@ -14,8 +14,9 @@ from .. import cf
 from .._version import __version__
 from . import fit as fitting
 from . import risk as risk_integral
+from . import risk_inputs
+from . import stripes as stripe_analysis
 from .hazard_curve import poe_from_rate
-from . import risk_inputs, stripes as stripe_analysis
 
 STATUS_KNOWN = "known"  # the fragility was given, not fitted
 
@@ -100,18 +101,23 @@ def compute(spec, folder, say=None, median=None, beta=None):
     entry = checked.stripes
     levels = risk_inputs.stripe_levels(entry)
     model = curve.source_model
-    if entry.scenario is not None:
+    if entry.records is not None:
+        plan = stripe_analysis.record_plan(levels, _record_sources(entry.records, spec.folder))
+    elif entry.scenario is not None:
         plan = stripe_analysis.plan(levels, entry.motions, entry.seed, scenario=(
             float(entry.scenario.magnitude), entry.scenario.distance.to_si()))
     else:
         plan = stripe_analysis.plan(levels, entry.motions, entry.seed, model=model)
-    vs30 = entry.vs30.to_si() if entry.vs30 is not None else model.vs30
+    vs30 = entry.vs30.to_si() if entry.vs30 is not None else \
+        (model.vs30 if model is not None else None)
     paths = stripe_analysis.write_studies(plan, checked.scene, vs30, checked.grid, spec.name,
                                           folder, entry.model)
     datasets = stripe_analysis.run(paths, say)
     k, n = stripe_analysis.counts(datasets)
-    fits = stripe_analysis.fit(levels, k, n, confidence=checked.confidence,
-                               replicates=checked.replicates, seed=entry.seed)
+    fits = stripe_analysis.fit(levels, stripe_analysis.outcomes(datasets),
+                               shared_members=entry.records is not None,
+                               confidence=checked.confidence, replicates=checked.replicates,
+                               seed=entry.seed)
     risks = np.empty(fits.shape, dtype=object)
     for index in np.ndindex(*fits.shape):
         f = fits[index]
@@ -131,6 +137,16 @@ def compute(spec, folder, say=None, median=None, beta=None):
             checked.hazard.source))
     return RiskOutcome(curve, checked.years, checked.target, checked.confidence, fits, risks,
                        dims, coords, plan, k, n, disaggregation, spec.name, checked.site)
+
+
+def _record_sources(names, folder):
+    """Bundled record names as they are, files as absolute paths from the risk file's
+    folder."""
+    from pathlib import Path
+
+    from ..io import records
+
+    return [n if n in records.NAMES else str((Path(folder) / n).resolve()) for n in names]
 
 
 def separated_risk(curve, levels, k, n, years, confidence):
@@ -177,6 +193,8 @@ def body_record(outcome, index=()):
                      "median_interval": list(f.theta_interval),
                      "beta_interval": list(f.beta_interval), "status": f.reason,
                      "stripes": {"levels": [s.level for s in outcome.stripes],
+                                 **({"records": outcome.stripes[0].distances}
+                                    if outcome.stripes[0].seeds is None else {}),
                                  "overturned": outcome.k[(slice(None),) + index].tolist(),
                                  "motions": outcome.n[(slice(None),) + index].tolist()}}
     fragility["units"] = outcome.curve.units

@@ -10,6 +10,9 @@ content of the shaking that produces it), or of one stated scenario, each scaled
 of the level as the site ensembles are.  Seeds: ``seed + j × motions + i`` for motion i of
 stripe j, so that no two motions share their noise.
 
+A user's records (``stripes.records``) are the motions of every stripe instead, each scaled
+to the level (the same records at every level, as in Baker 2015's multiple stripes).
+
 Each stripe is an ordinary study (``<folder>/<name>_stripe<j>.yaml`` and ``.nc``): grid = the
 body axes of the risk map, if any, × the motions (a zip of ``seed``, magnitude and distance),
 run through the runner (``runner.launch.run_file``, as ``python -m sweep.run`` runs it; a
@@ -23,6 +26,7 @@ import numpy as np
 from . import fit as fitting
 
 MEMBER = "member"  # the zip dimension of a stripe's motions
+MEMBER_DIMS = (MEMBER, "seed", "record")  # the dimension of the motions, whichever it is
 MAGNITUDE_AXIS = "excitation.horizontal.magnitude"
 DISTANCE_AXIS = "excitation.horizontal.distance"
 MAGNITUDE_DIGITS = 4  # decimals of a drawn magnitude
@@ -30,7 +34,8 @@ DISTANCE_STEP = 1.0  # m: drawn distances are rounded to this
 
 Stripe = namedtuple("Stripe", "level seeds magnitudes distances")
 Stripe.__doc__ = """The motions of one stripe: IM ``level`` [m/s²], and per motion its seed,
-magnitude and Rrup [m]."""
+magnitude and Rrup [m]; for records (:func:`record_plan`) ``seeds`` and ``magnitudes`` are
+None and ``distances`` holds the records."""
 
 
 def _distinct(values, draw, rounding, rng, tries=100):
@@ -70,9 +75,33 @@ def plan(levels, motions, seed, *, model=None, scenario=None):
     return stripes
 
 
+def record_plan(levels, records):
+    """The :class:`Stripe` s of an ensemble of ``records`` (bundled names, or absolute paths)
+    scaled to each level: no seed, magnitude or distance."""
+    return [Stripe(float(level), None, None, list(records)) for level in levels]
+
+
+def _record_study(stripe, scene, grid, name, output):
+    from ..io import records
+
+    first = stripe.distances[0]
+    excitation = {"kind": "record", **({"name": first} if first in records.NAMES
+                                       else {"path": first}), "pga": f"{stripe.level!r} m/s^2"}
+    scene = {k: v for k, v in (scene or {}).items() if k != "excitation"}
+    scene["excitation"] = {"horizontal": excitation}
+    return {"name": name,
+            "title": f"stripe at PGA {stripe.level:.4g} m/s^2: {len(stripe.distances)} "
+                     "records (sweep.risk)",
+            "scene": scene, "grid": {**(grid or {}), "record": list(stripe.distances)},
+            "output": str(output)}
+
+
 def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003"):
     """The study of one stripe: the base ``scene`` (body, contact, solver), a synthetic
-    horizontal motion scaled to the stripe's PGA; grid = ``grid`` (body axes) × the motions."""
+    horizontal motion scaled to the stripe's PGA (or the records of a :func:`record_plan`);
+    grid = ``grid`` (body axes) × the motions."""
+    if stripe.seeds is None:
+        return _record_study(stripe, scene, grid, name, output)
     first = {"kind": "synthetic", "model": motion_model, "magnitude": stripe.magnitudes[0],
              "distance": stripe.distances[0], "vs30": vs30, "seed": stripe.seeds[0],
              "pga": f"{stripe.level!r} m/s^2"}
@@ -132,30 +161,46 @@ def run(paths, say=None):
 
 def body_dims(ds):
     """The dimensions of a stripe dataset that are bodies (not the motions)."""
-    return [d for d in ds["overturned"].dims if d not in (MEMBER, "seed")]
+    return [d for d in ds["overturned"].dims if d not in MEMBER_DIMS]
+
+
+def outcomes(datasets):
+    """Per stripe, the outcome of every motion and body: overturned (1), standing (0) or
+    failed (−1), shape (stripes, motions) + body shape, the motions first."""
+    out = []
+    for ds in datasets:
+        over = ds["overturned"]
+        member = next(d for d in MEMBER_DIMS if d in over.dims)
+        out.append(over.transpose(member, ...).values)
+    return np.array(out)
 
 
 def counts(datasets):
     """Overturned and simulated motions per stripe and body: ``k``, ``n``, shape
     (stripes,) + body shape; failed cells (−1) left out."""
-    k, n = [], []
-    for ds in datasets:
-        over = ds["overturned"]
-        member = MEMBER if MEMBER in over.dims else "seed"
-        k.append((over == 1).sum(member).values)
-        n.append((over >= 0).sum(member).values)
-    return np.array(k), np.array(n)
+    o = outcomes(datasets)
+    return (o == 1).sum(axis=1), (o >= 0).sum(axis=1)
 
 
-def fit(levels, k, n, *, confidence=0.95, replicates=fitting.DEFAULT_REPLICATES, seed=0):
+def fit(levels, outcome, *, shared_members=False, confidence=0.95,
+        replicates=fitting.DEFAULT_REPLICATES, seed=0):
     """The lognormal fit of every body over the stripes: an object array of body shape of
-    ``fit.LognormalFit`` (each motion an independent member: the stripes' motions differ)."""
+    ``fit.LognormalFit``.
+
+    ``outcome`` is :func:`outcomes`.  The bootstrap resamples members: with
+    ``shared_members`` (the same records scaled to every stripe) a member is one record with
+    its outcomes at every level (a cluster bootstrap); otherwise every motion is its own
+    member (the stripes' synthetic motions all differ).
+    """
     levels = np.asarray(levels, dtype=float)
-    shape = k.shape[1:]
+    stripes, motions = outcome.shape[:2]
+    x = np.repeat(levels, motions)
+    labels = np.tile(np.arange(motions), stripes) if shared_members else np.arange(x.size)
+    shape = outcome.shape[2:]
     fits = np.empty(shape, dtype=object)
     for index in np.ndindex(*shape):
-        kj = k[(slice(None),) + index]
-        nj = n[(slice(None),) + index]
-        fits[index] = fitting.fit_lognormal(levels, kj, nj, confidence=confidence,
+        o = outcome[(slice(None), slice(None)) + index].ravel()
+        fits[index] = fitting.fit_lognormal(x, (o == 1).astype(float), (o >= 0).astype(float),
+                                            members=labels, confidence=confidence,
                                             replicates=replicates, seed=seed)
     return fits

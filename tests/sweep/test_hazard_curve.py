@@ -52,7 +52,8 @@ def test_two_columns_poe_and_rates_agree(tmp_path):
     rates = np.array([1e-2, 2e-3, 1e-4])
     (tmp_path / "r.txt").write_text("im,annual_rate\n50,1e-2\n100,2e-3\n300,1e-4\n")
     poe = hc.poe_from_rate(rates, 50.0)
-    (tmp_path / "p.txt").write_text("".join(f"{x} {float(p)!r}\n" for x, p in zip([50, 100, 300], poe)))
+    (tmp_path / "p.txt").write_text("".join(f"{x} {float(p)!r}\n"
+                                            for x, p in zip([50, 100, 300], poe)))
     a = hc.read_columns(tmp_path / "r.txt", "pga", "gal")
     b = hc.read_columns(tmp_path / "p.txt", "pga", "cm/s^2", "poe", 50.0)
     np.testing.assert_allclose(a.levels, [0.5, 1.0, 3.0])

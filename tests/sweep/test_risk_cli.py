@@ -111,3 +111,26 @@ def test_stripes_end_to_end(tmp_path, capsys):
     ds = xr.open_dataset(tmp_path / "results" / "t" / "risk.nc")
     assert ds["stripe_motions"].values.tolist() == [6, 6, 6]
     assert ds["annual_rate"].attrs["units"] == "yr-1"
+
+
+def test_record_stripes_resample_records(tmp_path, capsys):
+    """The same records at every stripe: the counts per stripe are those of the records."""
+    records = ["elcentro1940_ns", "elcentro1940_ew", "taft1952_ew_s69e"]
+    path = _risk_file(tmp_path, scene={"body": {"B": "15 cm", "H": "60 cm"},
+                                       "contact": {"mu": 0.8}},
+                      stripes={"levels": ["2 m/s^2", "6 m/s^2"], "records": records},
+                      replicates=50)
+    assert main([str(path), "--json"]) == 0
+    stripes = _json(capsys)["bodies"][0]["fragility"]["stripes"]
+    assert stripes["records"] == records and stripes["motions"] == [3, 3]
+
+
+def test_records_take_no_scenario(tmp_path, capsys):
+    path = _risk_file(tmp_path, scene={"body": {"B": "15 cm", "H": "60 cm"}},
+                      stripes={"levels": ["2 m/s^2", "6 m/s^2"], "records": ["a", "a"],
+                               "scenario": {"magnitude": 6, "distance": "20 km"}})
+    with pytest.raises(SystemExit):
+        main([str(path)])
+    err = capsys.readouterr().err
+    assert "stripes.scenario: synthetic motions only" in err
+    assert "stripes.records: a record is given twice" in err
