@@ -11,7 +11,8 @@ fragility::
 Writes the results as a CF netCDF dataset (``--dataset``, default ``results/<name>/risk.nc``
 beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
 (``--nrml``, default ``fragility.xml`` beside the dataset), ``-o`` a figure (the risk map with
-``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.
+``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.  With ``--hazard`` the dataset is written only where
+``--dataset`` says.
 A bad input gets one line per problem and exit status 2.
 """
 import sys
@@ -117,7 +118,8 @@ def _curve_only(args):
             curve = hc.read_columns(path, im, args.units, "poe" if args.poe else "annual_rate",
                                     args.poe)
     except hc.HazardFileError as err:
-        raise FileProblems([Problem("--hazard", str(path), str(err))]) from None
+        raise FileProblems([Problem("--hazard", str(path),
+                                    str(err).removeprefix(f"{path}: "))]) from None
     except OSError as err:
         raise FileProblems([Problem("--hazard", str(path), f"cannot read: {err.strerror}")]) \
             from None

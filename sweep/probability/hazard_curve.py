@@ -170,9 +170,9 @@ def read_openquake_csv(path, site=0):
     levels = np.array([_float(header[i][4:], f"{path}: line 2: {header[i]}")
                        for i in poe_columns])
     poes = np.array([_float(row[i], f"{where}: {header[i]}") for i in poe_columns])
-    if np.any((poes < 0) | (poes >= 1)):
-        raise HazardFileError(f"{where}: probabilities of exceedance must lie in [0, 1)")
-    keep = poes > 0
+    if np.any((poes < 0) | (poes > 1)):
+        raise HazardFileError(f"{where}: probabilities of exceedance must lie in [0, 1]")
+    keep = (poes > 0) & (poes < 1)  # P = 1: the rate is beyond what the file can say
     factor = FORMAT_FACTOR[im_dimension(im)]
     return _curve(im, levels[keep] * factor, rate_from_poe(poes[keep], investigation_time),
                   f"{path} (OpenQuake, T = {investigation_time:g} yr)")
@@ -244,9 +244,9 @@ def read_columns(path, im, units, kind="annual_rate", investigation_time=None):
         raise HazardFileError(f"{path}: no rows of numbers")
     levels, second = np.array(values).T
     if kind == "poe":
-        if np.any((second < 0) | (second >= 1)):
-            raise HazardFileError(f"{path}: probabilities of exceedance must lie in [0, 1)")
-        keep = second > 0
+        if np.any((second < 0) | (second > 1)):
+            raise HazardFileError(f"{path}: probabilities of exceedance must lie in [0, 1]")
+        keep = (second > 0) & (second < 1)
         rates = rate_from_poe(second[keep], investigation_time)
         levels = levels[keep]
     else:

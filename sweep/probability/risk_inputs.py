@@ -49,10 +49,15 @@ def distance_bins(entry):
     return np.array(DEFAULT_DISTANCE_BINS)
 
 
+def read_path(entry, folder):
+    """The path of ``hazard.file`` (relative to ``folder``)."""
+    path = Path(entry.path)
+    return path if path.is_absolute() else Path(folder) / path
+
+
 def read_curve(entry, folder):
     """The :class:`HazardCurve` of ``hazard.file`` (paths relative to ``folder``)."""
-    path = Path(entry.path)
-    path = path if path.is_absolute() else Path(folder) / path
+    path = read_path(entry, folder)
     if entry.format == "openquake":
         curve = hc.read_openquake_csv(path, entry.site)
     elif entry.format == "usgs":
@@ -87,6 +92,8 @@ def hazard(spec):
         value = checked.hazard.file.path if checked.hazard.file is not None else "..."
         message = str(err) if isinstance(err, hc.HazardFileError) else \
             f"cannot read: {err.strerror or err}"
+        if checked.hazard.file is not None:
+            message = message.removeprefix(f"{read_path(checked.hazard.file, spec.folder)}: ")
         raise FileProblems([Problem(where, value, message)], spec.source) from None
     if checked.stripes is not None:
         levels = stripe_levels(checked.stripes)

@@ -15,11 +15,11 @@ def test_openquake_csv_levels_in_g_and_poe_to_rate(tmp_path):
     path = tmp_path / "hazard_curve-mean-PGA_0.csv"
     path.write_text("#,,,,\"generated_by='OpenQuake engine 3.16.0', start_date='2024-01-01', "
                     "checksum=1, kind='mean', investigation_time=50.0, imt='PGA'\"\n"
-                    "lon,lat,depth,poe-0.1,poe-0.2,poe-0.4,poe-0.8\n"
-                    "10.0,45.0,0.0,0.5,0.1,0.01,0.0\n")
+                    "lon,lat,depth,poe-0.05,poe-0.1,poe-0.2,poe-0.4,poe-0.8\n"
+                    "10.0,45.0,0.0,1.0,0.5,0.1,0.01,0.0\n")
     curve = hc.read_openquake_csv(path)
     assert curve.im == "pga"
-    np.testing.assert_allclose(curve.levels, [0.1 * G, 0.2 * G, 0.4 * G])  # P = 0 dropped
+    np.testing.assert_allclose(curve.levels, [0.1 * G, 0.2 * G, 0.4 * G])  # P = 1, P = 0 dropped
     np.testing.assert_allclose(curve.rates, [math.log(2) / 50, -math.log(0.9) / 50,
                                              -math.log(0.99) / 50], rtol=1e-14)
 

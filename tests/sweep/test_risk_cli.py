@@ -134,3 +134,44 @@ def test_records_take_no_scenario(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "stripes.scenario: synthetic motions only" in err
     assert "stripes.records: a record is given twice" in err
+
+
+def test_openquake_curve_on_the_command_line(tmp_path, capsys):
+    """The format is found from the file; a P in 50 years and the same curve as rates give
+    the same rate of overturning."""
+    from sweep.probability.hazard_curve import HazardCurve, write_openquake_csv
+
+    levels = np.geomspace(0.05, 100.0, 120)
+    write_openquake_csv(tmp_path / "hazard_curve-mean-PGA_0.csv",
+                        HazardCurve("pga", levels, K0 * levels ** -K), 50.0)
+    assert main(["--hazard", str(tmp_path / "hazard_curve-mean-PGA_0.csv"), "--median",
+                 "4 m/s^2", "--beta", "0.4", "--json"]) == 0
+    rate = _json(capsys)["bodies"][0]["annual_rate"]
+    assert rate == pytest.approx(K0 * 4.0 ** -K * math.exp(0.5 * (K * 0.4) ** 2), rel=1e-3)
+
+
+@pytest.mark.parametrize("arguments, line", [
+    (["--im", "pgv"], "--im: the curve is of pga"),
+    (["--median", "30 cm/s"], "--median"),
+])
+def test_command_line_mismatches_are_refused(tmp_path, capsys, arguments, line):
+    from sweep.probability.hazard_curve import HazardCurve, write_openquake_csv
+
+    path = write_openquake_csv(tmp_path / "c.csv", HazardCurve("pga", [1.0, 2.0], [1e-2, 1e-3]))
+    options = {"--median": "4 m/s^2", "--beta": "0.4"}
+    options.update(dict(zip(arguments[::2], arguments[1::2])))
+    with pytest.raises(SystemExit) as ended:
+        main(["--hazard", str(path), *[w for kv in options.items() for w in kv]])
+    assert ended.value.code == 2
+    assert line in capsys.readouterr().err
+
+
+def test_a_missing_curve_file_is_one_line(tmp_path, capsys):
+    path = tmp_path / "risk.yaml"
+    path.write_text(yaml.safe_dump({"hazard": {"file": {"path": "none.csv",
+                                                        "format": "openquake"}},
+                                    "fragility": {"median": "0.3 g", "beta": 0.4}}))
+    with pytest.raises(SystemExit) as ended:
+        main([str(path)])
+    assert ended.value.code == 2
+    assert "hazard.file.path: cannot read" in capsys.readouterr().err

@@ -45,6 +45,23 @@ def test_characteristic_source_is_one_lognormal_exceedance():
     np.testing.assert_allclose(model.rates(levels), expected, rtol=1e-12)
 
 
+@pytest.mark.parametrize("name, cls", [("ASK14", pygmm.AbrahamsonSilvaKamai2014),
+                                       ("CB14", pygmm.CampbellBozorgnia2014),
+                                       ("CY14", pygmm.ChiouYoungs2014)])
+def test_other_models_by_name(name, cls):
+    """A characteristic source of each model against pygmm called here on a vertical point
+    rupture (Rjb = Rx = epicentral distance, Rrup = hypocentral distance, 1 km wide)."""
+    model = sh.SourceModel([sh.point_source(sh.Recurrence(0.01, 6.0, characteristic=True),
+                                            12e3, 6e3)], 400.0, name, "sa(0.5)")
+    gm = cls(pygmm.Scenario(mag=6.0, dist_jb=12.0, dist_rup=math.hypot(12.0, 6.0),
+                            dist_x=12.0, v_s30=400.0, mechanism="SS", depth_hyp=6.0,
+                            depth_tor=6.0, dip=90.0, width=1.0))
+    mu = math.log(gm.interp_spec_accels([0.5])[0] * G)
+    sigma = gm.interp_ln_stds([0.5])[0]
+    assert model.rates([2.0])[0] == pytest.approx(0.01 * norm.sf((math.log(2.0) - mu) / sigma),
+                                                  rel=1e-10)
+
+
 def test_gutenberg_richter_point_source_against_monte_carlo():
     """λ(x) and the mean magnitude of the disaggregation against sampling M by the inverse
     CDF of the truncated density, to 3 standard errors of the sampling."""
