@@ -11,9 +11,9 @@ fragility::
 Writes the results as a CF netCDF dataset (``--dataset``, default ``results/<name>/risk.nc``
 beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
 (``--nrml``, default ``fragility.xml`` beside the dataset), ``-o`` a figure (the risk map with
-``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.  With ``--hazard`` the dataset is written only where
-``--dataset`` says.
-A bad input gets one line per problem and exit status 2.
+``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.
+With ``--hazard`` the dataset is written only where ``--dataset`` says.  A bad input gets one
+line per problem and exit status 2.
 """
 import sys
 from pathlib import Path
