@@ -48,6 +48,12 @@ def _parser():
     parser.add_argument("--median", help="median of a known lognormal fragility, with units "
                                           "(0.4g, 3.9 m/s^2, 30 cm/s)")
     parser.add_argument("--beta", type=_beta, help="its dispersion")
+    parser.add_argument("--fragility-model", metavar="XML",
+                        help="a known fragility from an OpenQuake fragility model (NRML 0.5, "
+                             "continuous logncdf, limit state 'overturned')")
+    parser.add_argument("--function", metavar="ID",
+                        help="the fragilityFunction of --fragility-model (default: its only "
+                             "one)")
     parser.add_argument("--years", type=_positive, help="period of the probability (default: "
                                                         "the risk file's, else 50)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON (SI)")
@@ -73,6 +79,47 @@ def _median(text, im):
         return Problem("--median", text, str(err))
 
 
+def _given_fragility(args, im, source=None):
+    """(median [SI], beta) of ``--median``/``--beta`` or ``--fragility-model``, or None when
+    none is given; FileProblems when they are incomplete or do not fit the IM ``im``."""
+    if args.fragility_model is not None:
+        from .probability.nrml import read_fragility_model
+
+        if args.median is not None or args.beta is not None:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        "give it or --median and --beta, not both")], source)
+        try:
+            functions = read_fragility_model(args.fragility_model)
+        except OSError as err:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"cannot read: {err.strerror}")], source) from None
+        except (ValueError, SyntaxError, AttributeError) as err:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"not a fragility model: {err}")], source) from None
+        if args.function is None and len(functions) > 1:
+            raise FileProblems([Problem("--function", None, "required: the model has "
+                                        f"{', '.join(functions)}")], source)
+        key = args.function if args.function is not None else next(iter(functions))
+        if key not in functions:
+            raise FileProblems([Problem("--function", key, "not in the model; it has "
+                                        f"{', '.join(functions)}")], source)
+        chosen = functions[key]
+        if chosen.im != im:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"a fragility of {chosen.im}, the hazard is of "
+                                        f"{im}")], source)
+        return chosen.median, chosen.beta
+    if args.median is None and args.beta is None:
+        return None
+    if (args.median is None) != (args.beta is None):
+        raise FileProblems([Problem("--median" if args.median is None else "--beta", None,
+                                    "give --median and --beta together")], source)
+    median = _median(args.median, im)
+    if isinstance(median, Problem):
+        raise FileProblems([median], source)
+    return median, args.beta
+
+
 def _hazard_format(path, given):
     if given:
         return given
@@ -92,9 +139,9 @@ def _curve_only(args):
     from .probability import hazard_curve as hc
     from .probability import risk_report
 
-    problems = [Problem(opt, None, "required with --hazard")
-                for opt, value in (("--median", args.median), ("--beta", args.beta))
-                if value is None]
+    problems = [] if args.fragility_model is not None else [
+        Problem(opt, None, "required with --hazard (or --fragility-model)")
+        for opt, value in (("--median", args.median), ("--beta", args.beta)) if value is None]
     path = Path(args.hazard)
     fmt = _hazard_format(path, args.format)
     im = None
@@ -125,10 +172,8 @@ def _curve_only(args):
             from None
     if im is not None and curve.im != im:
         raise FileProblems([Problem("--im", args.im, f"the curve is of {curve.im}")])
-    median = _median(args.median, curve.im)
-    if isinstance(median, Problem):
-        raise FileProblems([median])
-    return risk_report.known(curve, median, args.beta, args.years or 50.0, name=path.stem)
+    median, beta = _given_fragility(args, curve.im)
+    return risk_report.known(curve, median, beta, args.years or 50.0, name=path.stem)
 
 
 def _from_file(args):
@@ -137,17 +182,10 @@ def _from_file(args):
     from .probability import risk_report
 
     spec = load_risk(args.risk)
-    if (args.median is None) != (args.beta is None):
-        raise FileProblems([Problem("--median" if args.median is None else "--beta", None,
-                                    "give --median and --beta together")], args.risk)
     folder = spec.folder / "results" / spec.name
-    median = None
-    if args.median is not None:
-        im = spec.checked.im or "pga"
-        median = _median(args.median, im)
-        if isinstance(median, Problem):
-            raise FileProblems([median], args.risk)
-    outcome = risk_report.compute(spec, folder, say=_say, median=median, beta=args.beta)
+    given = _given_fragility(args, spec.checked.im or "pga", args.risk)
+    median, beta = (None, None) if given is None else given
+    outcome = risk_report.compute(spec, folder, say=_say, median=median, beta=beta)
     if args.years is not None:
         outcome = _with_years(outcome, args.years)
     dataset = Path(spec.checked.output) if spec.checked.output else folder / "risk.nc"

@@ -175,3 +175,20 @@ def test_a_missing_curve_file_is_one_line(tmp_path, capsys):
         main([str(path)])
     assert ended.value.code == 2
     assert "hazard.file.path: cannot read" in capsys.readouterr().err
+
+
+def test_a_fragility_model_of_openquake_is_read(tmp_path, capsys):
+    """Our NRML file back in: the same rate as --median and --beta; an IM it does not have is
+    refused."""
+    levels_g = np.geomspace(0.005, 20.0, 120)
+    path = _curve_file(tmp_path, levels_g.tolist(), (K0 * (levels_g * G) ** -K).tolist())
+    model = nrml.write_fragility_model(tmp_path / "f.xml", [("block", 0.4 * G, 0.3)], "pga")
+    common = ["--hazard", str(path), "--im", "pga", "--units", "g", "--json"]
+    assert main(common + ["--fragility-model", str(model)]) == 0
+    from_model = _json(capsys)["bodies"][0]["annual_rate"]
+    assert main(common + ["--median", "0.4 g", "--beta", "0.3"]) == 0
+    assert from_model == pytest.approx(_json(capsys)["bodies"][0]["annual_rate"], rel=1e-9)
+    pgv = nrml.write_fragility_model(tmp_path / "v.xml", [("block", 0.3, 0.3)], "pgv")
+    with pytest.raises(SystemExit):
+        main(common + ["--fragility-model", str(pgv)])
+    assert "a fragility of pgv, the hazard is of pga" in capsys.readouterr().err
