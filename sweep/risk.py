@@ -13,7 +13,8 @@ beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
 (``--nrml``, default ``fragility.xml`` beside the dataset), ``-o`` a figure (the risk map with
 ``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.
 With ``--hazard`` the dataset is written only where ``--dataset`` says.  A bad input gets one
-line per problem and exit status 2.
+line per problem and exit status 2.  Under ``mpiexec -n N`` the ranks share the stripes'
+simulations (each stripe study runs on all of them) and rank 0 reports and writes.
 """
 import sys
 from pathlib import Path
@@ -214,7 +215,10 @@ def _with_years(outcome, years):
 
 
 def _say(text):
-    print(f"sweep.risk: {text}", file=sys.stderr, flush=True)
+    from .runner.mpi import first_process
+
+    if first_process():
+        print(f"sweep.risk: {text}", file=sys.stderr, flush=True)
 
 
 def _pct(p):
@@ -359,6 +363,10 @@ def main(argv=None):
     except RunFailed as err:
         print(f"sweep.risk: {err}", file=sys.stderr)
         return EXIT_FAILED
+    from .runner.mpi import first_process
+
+    if not first_process():  # under mpiexec: the ranks shared the stripes; rank 0 reports
+        return EXIT_OK
     if args.map and not outcome.body_dims:
         print("sweep.risk: --map needs a grid of bodies in the risk file", file=sys.stderr)
         return EXIT_BAD_INPUT
