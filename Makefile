@@ -43,13 +43,18 @@ bench: install
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
 # 17 (closed forms), 18-21 (records), the rocking spectrum and fragility figures (one MPI job
-# on 2 ranks), and the estimate examples (deterministic, and with an ensemble of records).
+# on 2 ranks), the estimate examples (deterministic, and with an ensemble of records) and
+# the risk examples (docs/risk.md).
 figures: install
 	mkdir -p figures
 	$(VENV)/bin/mpiexec -n 2 $(PY) -m sweep.figures -o figures
 	$(PY) -m sweep.estimate studies/bodies_example.yaml | tee figures/bodies_example.txt
 	$(PY) -m sweep.estimate studies/tombstones_estimate.yaml -o figures/site_estimate.png \
 	  > figures/tombstones_estimate.txt
+	$(PY) -m sweep.risk studies/risk_example.yaml -o figures/risk_example.png \
+	  > figures/risk_example.txt
+	$(PY) -m sweep.risk studies/risk_map_example.yaml --map figures/risk_map_example.png \
+	  > figures/risk_map_example.txt
 
 # Sweep rate against curves a and c (docs/reproduction.md): 2,304 sweeps, ~1,300 s CPU,
 # ~15 min on 2 ranks; tables into figures/rate_study.md, figure figures/rate_study.png

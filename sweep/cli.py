@@ -52,7 +52,8 @@ EPILOG = (f"A quantity is a number in SI units (m, s, rad, Hz) or a string '<num
           "overturning velocity and slenderness angle).  Every key of scene, study and bodies "
           "files, with its units and default: docs/schema.md.")
 SCRIPTS = {"sweep.run": "rigid-run", "sweep.scene": "rigid-scene", "sweep.plot": "rigid-plot",
-           "sweep.estimate": "rigid-estimate", "sweep.fragility": "rigid-fragility"}
+           "sweep.estimate": "rigid-estimate", "sweep.fragility": "rigid-fragility",
+           "sweep.risk": "rigid-risk"}
 """The console scripts of pyproject.toml's [project.scripts], by the module they run."""
 _ROLE = re.compile(r":[a-z]+(?::[a-z]+)?:`(~?)([^`]*)`")  # :func:`~a.b` (the ~: b alone)
 _LITERAL = re.compile(r"``(.*?)``", re.DOTALL)

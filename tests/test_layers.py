@@ -45,7 +45,7 @@ LAYERS = (
     ("paper and probability", ("sweep.paper", "sweep.probability")),
     ("plots", ("sweep.plots",)),  # figures from datasets
     ("commands", ("sweep.run", "sweep.scene", "sweep.plot", "sweep.fragility", "sweep.estimate",
-                  "sweep.figures")),  # the thin python -m commands
+                  "sweep.figures", "sweep.risk")),  # the thin python -m commands
     ("public API", ("sweep",)),  # sweep/__init__.py
 )
 KERNEL_FORBIDDEN = ("sweep", "mpi4py", "xarray", "matplotlib")

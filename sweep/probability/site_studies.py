@@ -203,6 +203,9 @@ def _run_study(path):
         return ds.load(), ran
 
 
+run_study_file = _run_study  # the same for other studies of this layer (sweep.probability.stripes)
+
+
 def _ended(path, status):
     """Why a study of the estimate did not run to its end: the status its command would
     have ended with."""

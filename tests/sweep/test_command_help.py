@@ -18,7 +18,7 @@ COMMANDS = [f"sweep.{package}{path.stem}"  # the modules with a main run by pyth
             for package in ("", "paper.")
             for path in sorted((ROOT / "sweep" / package.rstrip(".")).glob("*.py"))
             if re.search(r'^if __name__ == "__main__":', path.read_text(), re.MULTILINE)]
-QUANTITIES = {"sweep.scene", "sweep.run", "sweep.estimate"}  # scene, study, bodies files
+QUANTITIES = {"sweep.scene", "sweep.run", "sweep.estimate", "sweep.risk"}  # scene, study, bodies, risk files
 MARKUP = re.compile(r"``|:(?:func|mod|class|meth|attr|data|ref):|`[^`\s][^`]*`")
 
 

@@ -95,7 +95,7 @@ def test_json_schemas_accept_every_bundled_file(written):
     checked = 0
     for path in sorted((ROOT / "studies").glob("*.yaml")):
         raw = yaml.safe_load(path.read_text())
-        if "body" in raw or "grid" in raw:
+        if ("body" in raw or "grid" in raw) and "hazard" not in raw:  # risk files apart
             errors = list(validators["study" if "grid" in raw else "scene"].iter_errors(raw))
             assert not errors, (path.name, errors[0].message)
             checked += 1

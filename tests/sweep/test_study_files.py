@@ -1,6 +1,6 @@
 """Every file in studies/ still validates, so that none rots as the schemas change.
 
-A file with ``grid`` is a study (checked with every cell's scene, as ``sweep.run`` does before
+A file with ``hazard`` is a risk file of ``sweep.risk``, one with ``grid`` a study (checked with every cell's scene, as ``sweep.run`` does before
 running), one with ``bodies`` or ``sites`` a bodies file of ``sweep.estimate``, any other YAML
 file a scene.
 """
@@ -10,6 +10,7 @@ import pytest
 import yaml
 
 from sweep.estimate import load_survey
+from sweep.io.risk_schema import load_risk
 from sweep.io.scene_schema import load_scene
 from sweep.runner.cell_checks import load_study
 
@@ -19,6 +20,8 @@ FILES = sorted(STUDIES.glob("*.yaml"))
 
 def kind_of(path):
     raw = yaml.safe_load(path.read_text())
+    if isinstance(raw, dict) and "hazard" in raw:
+        return "risk"
     if isinstance(raw, dict) and "grid" in raw:
         return "study"
     if isinstance(raw, dict) and ("bodies" in raw or "sites" in raw):
@@ -27,7 +30,7 @@ def kind_of(path):
 
 
 def test_studies_folder_has_files_of_every_kind():
-    assert {kind_of(p) for p in FILES} == {"study", "bodies", "scene"}
+    assert {kind_of(p) for p in FILES} == {"study", "bodies", "scene", "risk"}
 
 
 @pytest.mark.parametrize("path", FILES, ids=[p.name for p in FILES])
@@ -37,6 +40,9 @@ def test_file_validates(path):
         study = load_study(path)  # raises FileProblems listing every problem
         assert study.n_cells >= 1
         assert study.output.suffix == ".nc"
+    elif kind == "risk":
+        spec = load_risk(path)
+        assert spec.checked.hazard is not None
     elif kind == "bodies":
         survey = load_survey(path)
         assert all(site.bodies for site in survey.sites)

@@ -1,0 +1,33 @@
+"""Names of intensity measures: ``pga``, ``pgv``, ``sa(T)`` (T the period in s), their
+dimension, and the names OpenQuake (``PGA``, ``SA(0.3)``) and the USGS (``SA0P3``) write."""
+import re
+
+IM_PATTERN = re.compile(r"^(pga|pgv|sa\((\d+(?:\.\d*)?|\.\d+)\))$")
+SI_UNITS = {"acceleration": "m s-2", "velocity": "m s-1"}
+
+
+def im_dimension(im):
+    """``"acceleration"`` for pga and sa(T), ``"velocity"`` for pgv."""
+    return "velocity" if im == "pgv" else "acceleration"
+
+
+def normalize_im(text):
+    """The IM name as this package writes it (``pga``, ``pgv``, ``sa(0.3)``) from OpenQuake's
+    ``PGA``, ``SA(0.3)`` or the USGS's ``SA0P3``; ValueError if none of these."""
+    raw = str(text).strip()
+    usgs = re.fullmatch(r"SA(\d+)P(\d+)", raw, re.IGNORECASE)
+    if usgs:
+        raw = f"sa({usgs.group(1)}.{usgs.group(2)})"
+    name = raw.lower().replace(" ", "")
+    match = IM_PATTERN.match(name)
+    if not match:
+        raise ValueError(f"unknown intensity measure {text!r}; expected pga, pgv or sa(T), "
+                         "T the period in s")
+    if match.group(2) is not None:
+        return f"sa({float(match.group(2)):g})"
+    return name
+
+
+def openquake_imt(im):
+    """OpenQuake's IMT name of an IM: ``PGA``, ``PGV``, ``SA(0.3)``."""
+    return im.upper() if not im.startswith("sa(") else f"SA({im[3:-1]})"

@@ -1,0 +1,416 @@
+"""Risk files of ``python -m sweep.risk``: a site's hazard, a body (or a grid of bodies), the
+stripes of motions that give its fragility, the period and the target (docs/risk.md)::
+
+    name: risk_example
+    hazard:
+      source:                                  # or file: {path, format, im, units, ...}
+        model: BSSA14
+        im: pga
+        vs30: 760 m/s
+        levels: {start: 0.02 g, stop: 2 g, num: 30}
+        sources:
+          - {kind: point, distance: 15 km, depth: 8 km,
+             recurrence: {rate: 0.05, m_min: 5.0, m_max: 7.5, b: 1.0}}
+    scene: {body: {B: 20 cm, H: 80 cm}, contact: {mu: 0.8, e_x: -0.8, e_y: 0.2}}
+    stripes: {levels: [1 m/s^2, 2 m/s^2, 4 m/s^2], motions: 10, seed: 0}
+    years: 50
+    target: 0.02
+    grid: {H: [40 cm, 80 cm], b_over_h: [0.2, 0.3]}     # optional: a risk map
+
+One pydantic model (:class:`RiskFile`) checks it; every problem is reported at once with its
+dotted path (``hazard.source.sources[0].recurrence.m_max``) and the value given.  What needs the
+hazard itself (a curve file that cannot be read, stripes outside the curve) is checked when
+the hazard is built (``sweep.probability.risk_inputs``), reported the same way.
+"""
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any, Literal, Optional, Union
+
+import numpy as np
+from pydantic import (AfterValidator, Field, StrictInt, StrictStr, ValidationError,
+                      field_validator, model_validator)
+
+from .imt import im_dimension, normalize_im
+from .problems import MISSING, FieldError, FileProblems, join_path, validation_problems
+from .scene_schema import Real, Seed, StrictModel, quantity
+from .yamlio import read_yaml, top_level_problems
+
+GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
+MECHANISMS = ("SS", "NS", "RS")
+FORMATS = ("openquake", "usgs", "columns")
+GRID_AXES = ("B", "H", "b_over_h", "mu")  # body axes of a risk map
+MAX_LEVELS = 200
+MAX_MOTIONS = 10_000
+
+Positive = quantity("length", gt=0)
+
+
+def _absolute(q):
+    if q.body_relative:
+        raise ValueError("must be in m/s^2, gal, g (or m/s, cm/s for pgv): IM levels are "
+                         "shared by every body")
+    return q
+
+
+IMLevel = Annotated[quantity("acceleration", "velocity", gt=0), AfterValidator(_absolute)]
+
+
+class LevelRange(StrictModel):
+    """IM levels: ``{start, stop, num}`` (log-spaced) or a list."""
+
+    start: IMLevel
+    stop: IMLevel
+    num: Annotated[StrictInt, Field(ge=2, le=MAX_LEVELS)]
+
+    @model_validator(mode="after")
+    def _increasing(self):
+        if self.start.dimension != self.stop.dimension:
+            raise FieldError("stop", str(self.stop), "start and stop must have one dimension")
+        if not self.stop.to_si() > self.start.to_si():
+            raise FieldError("stop", str(self.stop), "must be greater than start")
+        return self
+
+    def si(self):
+        return np.geomspace(self.start.to_si(), self.stop.to_si(), self.num)
+
+
+def _level_list(value):
+    return value if not isinstance(value, list) else {"values": value}
+
+
+class LevelList(StrictModel):
+    values: Annotated[list[IMLevel], Field(min_length=2, max_length=MAX_LEVELS)]
+
+    @model_validator(mode="after")
+    def _increasing(self):
+        si = [q.to_si() for q in self.values]
+        errors = [(i + 1, str(self.values[i + 1]), "levels must increase")
+                  for i in range(len(si) - 1) if not si[i + 1] > si[i]]
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+    def si(self):
+        return np.array([q.to_si() for q in self.values])
+
+
+Levels = Union[LevelList, LevelRange]
+
+
+def _im(value):
+    return normalize_im(value)
+
+
+class Recurrence(StrictModel):
+    """Truncated Gutenberg-Richter: ``rate`` of M >= ``m_min`` (or ``a``), ``b``, ``m_max``;
+    or ``characteristic: true``: ``rate`` of M = ``m_min``."""
+
+    rate: Optional[Annotated[Real, Field(gt=0)]] = None
+    a: Optional[Real] = None
+    b: Annotated[Real, Field(gt=0, le=3)] = 1.0
+    m_min: Annotated[Real, Field(ge=4.0, le=8.5)]
+    m_max: Optional[Annotated[Real, Field(ge=4.0, le=8.5)]] = None
+    characteristic: bool = False
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        errors = []
+        if (self.rate is None) == (self.a is None):
+            errors.append(("rate", MISSING if self.rate is None else self.rate,
+                           "give either rate (of M >= m_min) or a"))
+        if self.characteristic:
+            if self.m_max is not None:
+                errors.append(("m_max", self.m_max, "a characteristic source has one "
+                                                    "magnitude, m_min"))
+        elif self.m_max is None:
+            errors.append(("m_max", MISSING, "required (or characteristic: true)"))
+        elif not self.m_max > self.m_min:
+            errors.append(("m_max", self.m_max, "must be greater than m_min"))
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+    def si(self):
+        rate = self.rate if self.rate is not None else 10.0 ** (self.a - self.b * self.m_min)
+        return {"rate": float(rate), "m_min": float(self.m_min),
+                "m_max": None if self.m_max is None else float(self.m_max),
+                "b": float(self.b), "characteristic": self.characteristic}
+
+
+class PointSource(StrictModel):
+    """A point at an epicentral ``distance`` from the site."""
+
+    kind: Literal["point"]
+    distance: quantity("length", ge=0)
+    depth: Positive
+    mechanism: Literal[MECHANISMS] = "SS"
+    recurrence: Recurrence
+
+
+class AreaSource(StrictModel):
+    """A rectangle ``east: [x0, x1]``, ``north: [y0, y1]`` around the site (the site at 0, 0),
+    cut into cells of side ``spacing``."""
+
+    kind: Literal["area"]
+    east: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]
+    north: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]
+    spacing: Positive
+    depth: Positive
+    mechanism: Literal[MECHANISMS] = "SS"
+    recurrence: Recurrence
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        errors = [(key, [str(q) for q in side], "must be [lower, upper], lower < upper")
+                  for key, side in (("east", self.east), ("north", self.north))
+                  if not side[1].to_si() > side[0].to_si()]
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+
+SourceEntry = Annotated[Union[PointSource, AreaSource], Field(discriminator="kind")]
+
+
+class SourceHazard(StrictModel):
+    """A source model computed in the package (``sweep.probability.source_hazard``)."""
+
+    model: Literal[GMPE_NAMES] = "BSSA14"
+    im: StrictStr = "pga"
+    vs30: quantity("velocity", gt=0)
+    levels: Optional[Any] = None
+    sources: Annotated[list[SourceEntry], Field(min_length=1)]
+    distance_bins: Optional[Annotated[list[quantity("length", ge=0)], Field(min_length=2)]] \
+        = None
+
+    @field_validator("im")
+    @classmethod
+    def _name(cls, value):
+        return _im(value)
+
+    @field_validator("levels")
+    @classmethod
+    def _levels(cls, value):
+        if value is None:
+            return None
+        return (LevelList if isinstance(value, list) else LevelRange).model_validate(
+            _level_list(value) if isinstance(value, list) else value)
+
+
+class CurveFile(StrictModel):
+    """A hazard curve file: OpenQuake CSV, USGS JSON or two columns."""
+
+    path: StrictStr
+    format: Literal[FORMATS]
+    im: Optional[StrictStr] = None
+    units: Optional[StrictStr] = None
+    kind: Literal["annual_rate", "poe"] = "annual_rate"
+    investigation_time: Optional[Annotated[Real, Field(gt=0)]] = None
+    site: Annotated[StrictInt, Field(ge=0)] = 0
+
+    @field_validator("im")
+    @classmethod
+    def _name(cls, value):
+        return None if value is None else _im(value)
+
+    @model_validator(mode="after")
+    def _columns(self):
+        errors = []
+        if self.format == "columns":
+            errors += [(key, MISSING, "required for a two-column file")
+                       for key in ("im", "units") if getattr(self, key) is None]
+            if self.kind == "poe" and self.investigation_time is None:
+                errors.append(("investigation_time", MISSING, "required with kind: poe"))
+        else:
+            errors += [(key, getattr(self, key), f"read from the {self.format} file itself")
+                       for key in ("units", "investigation_time")
+                       if getattr(self, key) is not None]
+            if self.kind != "annual_rate":
+                errors.append(("kind", self.kind, f"read from the {self.format} file itself"))
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+
+class Hazard(StrictModel):
+    """``file:`` or ``source:``."""
+
+    file: Optional[CurveFile] = None
+    source: Optional[SourceHazard] = None
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.file is None) == (self.source is None):
+            raise FieldError("file", MISSING, "give either file or source")
+        return self
+
+
+class Scenario(StrictModel):
+    """One earthquake for every motion of the stripes (instead of the disaggregation)."""
+
+    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)]
+    distance: Positive
+
+
+class Stripes(StrictModel):
+    """Multiple stripes: ``motions`` synthetic motions at each IM level, or the ``records``
+    of an ensemble (bundled names or files) scaled to each level."""
+
+    levels: Any
+    motions: Annotated[StrictInt, Field(ge=2, le=MAX_MOTIONS)] = 10
+    records: Optional[Annotated[list[StrictStr], Field(min_length=2, max_length=MAX_MOTIONS)]] \
+        = None
+    seed: Seed = 0
+    scenario: Optional[Scenario] = None
+    vs30: Optional[quantity("velocity", gt=0)] = None
+    model: StrictStr = "boore2003"
+
+    @field_validator("levels")
+    @classmethod
+    def _levels(cls, value):
+        return (LevelList.model_validate(_level_list(value)) if isinstance(value, list)
+                else LevelRange.model_validate(value))
+
+    @model_validator(mode="after")
+    def _records_or_synthetic(self):
+        if self.records is not None:
+            errors = [(key, str(getattr(self, key)), "synthetic motions only: the records are "
+                                                     "the motions")
+                      for key in ("scenario", "vs30") if getattr(self, key) is not None]
+            if len(set(self.records)) < len(self.records):
+                errors.append(("records", self.records, "a record is given twice"))
+            if errors:
+                raise FieldError.several(errors)
+        return self
+
+
+class Fragility(StrictModel):
+    """A known lognormal fragility: ``median`` (an IM with units) and ``beta``."""
+
+    median: IMLevel
+    beta: Annotated[Real, Field(ge=0, le=3)]
+
+
+class RiskFile(StrictModel):
+    """A risk file (module docstring)."""
+
+    name: Optional[StrictStr] = None
+    title: Optional[StrictStr] = None
+    site: Optional[StrictStr] = None
+    hazard: Hazard
+    scene: Optional[dict] = None
+    stripes: Optional[Stripes] = None
+    fragility: Optional[Fragility] = None
+    years: Annotated[Real, Field(gt=0, le=1e6)] = 50.0
+    target: Optional[Annotated[Real, Field(gt=0, lt=1)]] = None
+    grid: Optional[dict[StrictStr, Annotated[list[Any], Field(min_length=1)]]] = None
+    confidence: Annotated[Real, Field(gt=0, lt=1)] = 0.95
+    replicates: Annotated[StrictInt, Field(ge=0, le=100_000)] = 1000
+    output: Optional[StrictStr] = None
+
+    @field_validator("grid")
+    @classmethod
+    def _axes(cls, grid):
+        if grid is None:
+            return None
+        errors = [(key, key, f"not an axis of a risk map; axes: {', '.join(GRID_AXES)}")
+                  for key in grid if key not in GRID_AXES]
+        if errors:
+            raise FieldError.several(errors)
+        return grid
+
+    @model_validator(mode="after")
+    def _what_gives_the_fragility(self):
+        errors = []
+        if self.stripes is None and self.fragility is None:
+            errors.append(("stripes", MISSING, "required (or a known fragility)"))
+        if self.stripes is not None and self.fragility is not None:
+            errors.append(("fragility", "...", "give either stripes or fragility"))
+        if self.stripes is not None:
+            if self.scene is None:
+                errors.append(("scene", MISSING, "required with stripes: the body simulated"))
+            if self.hazard.file is not None and self.stripes.records is None:
+                if self.stripes.scenario is None:
+                    errors.append((("stripes", "scenario"), MISSING,
+                                   "required with a hazard curve file (no disaggregation)"))
+                if self.stripes.vs30 is None:
+                    errors.append((("stripes", "vs30"), MISSING,
+                                   "required with a hazard curve file"))
+        im = self.im
+        if self.stripes is not None and im not in (None, "pga"):
+            errors.append((("stripes", "levels"), im, "stripes scale the motions to PGA: the "
+                                                      "hazard must be of pga"))
+        if self.fragility is not None and im is not None and \
+                self.fragility.median.dimension != im_dimension(im):
+            errors.append((("fragility", "median"), str(self.fragility.median),
+                           f"must be an {im_dimension(im)}, as {im}"))
+        if self.stripes is not None and im is not None:
+            levels = self.stripes.levels.values if isinstance(self.stripes.levels, LevelList) \
+                else [self.stripes.levels.start]
+            if any(q.dimension != im_dimension(im) for q in levels):
+                errors.append((("stripes", "levels"), str(levels[0]),
+                               f"must be {im_dimension(im)}s, as {im}"))
+        if errors:
+            raise FieldError.several(errors)
+        return self
+
+    @property
+    def im(self):
+        return self.hazard.source.im if self.hazard.source is not None else self.hazard.file.im
+
+
+_MODELS = (RiskFile, Hazard, CurveFile, SourceHazard, PointSource, AreaSource, Recurrence,
+           Stripes, Scenario, Fragility, LevelRange, LevelList)
+_FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
+
+
+@dataclass(frozen=True)
+class RiskSpec:
+    """A checked risk file: the model and where it was read (relative paths from there)."""
+
+    checked: RiskFile
+    source: Path = None
+
+    @property
+    def folder(self):
+        return Path(".") if self.source is None else self.source.parent
+
+    @property
+    def name(self):
+        if self.checked.name:
+            return self.checked.name
+        return "risk" if self.source is None else self.source.stem
+
+
+def _dotted(loc):
+    """The dotted path of a pydantic location, without union tags (``sources[0].point``) and
+    the ``values`` of a list of levels written as a list."""
+    path = ""
+    for i, key in enumerate(loc):
+        if key in ("point", "area") and i and isinstance(loc[i - 1], int):
+            continue
+        if key == "values" and i and loc[i - 1] == "levels":
+            continue
+        path = join_path(path, key)
+    return path
+
+
+def load_risk(source):
+    """Read and check a risk file (or a dict of its schema); every problem at once.
+
+    Raises
+    ------
+    FileProblems
+        With dotted paths and the values given.
+    """
+    raw = source if isinstance(source, dict) else read_yaml(source)
+    path = None if isinstance(source, dict) else Path(source)
+    top = top_level_problems(raw, [], "risk file", "hazard, scene, stripes, years")
+    if top:
+        raise FileProblems(top, path)
+    try:
+        checked = RiskFile.model_validate(raw)
+    except ValidationError as err:
+        raise FileProblems(validation_problems(err, _FIELD_NAMES, dotted=_dotted,
+                                               tags=("point", "area")), path) from None
+    return RiskSpec(checked, path)

@@ -1,0 +1,402 @@
+"""``python -m sweep.risk RISK.yaml``: the chance that a body overturns at a site in ``years``.
+
+Hazard (a curve file or a source model) → stripes of synthetic motions drawn from the
+hazard's disaggregation → the fragility fitted over the stripes → the annual rate of
+overturning λ_O, the probability in ``years`` with its interval, the return period and which
+shaking contributes (docs/risk.md).  Also without simulating, from a known lognormal
+fragility::
+
+    python -m sweep.risk --hazard CURVE.csv --im pga --median 0.4g --beta 0.3 --years 50
+
+Writes the results as a CF netCDF dataset (``--dataset``, default ``results/<name>/risk.nc``
+beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
+(``--nrml``, default ``fragility.xml`` beside the dataset), ``-o`` a figure (the risk map with
+``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.
+With ``--hazard`` the dataset is written only where ``--dataset`` says.  A bad input gets one
+line per problem and exit status 2.  Under ``mpiexec -n N`` the ranks share the stripes'
+simulations (each stripe study runs on all of them) and rank 0 reports and writes.
+"""
+import sys
+from pathlib import Path
+
+from .cli import argument_parser, checked_type, command, print_json
+from .io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
+from .io.files import output_problems, write_csv
+from .io.problems import FileProblems, Problem
+
+_positive = checked_type(float, lambda v: v > 0, "a positive number")
+_beta = checked_type(float, lambda v: v >= 0, "a non-negative number")
+FORMATS = ("openquake", "usgs", "columns")
+
+
+def _parser():
+    parser = argument_parser(
+        "sweep.risk", quantities=True,
+        description="Annual rate and probability of overturning of a body at a site: hazard, "
+                    "stripes of synthetic motions, fragility, risk (docs/risk.md).")
+    parser.add_argument("risk", nargs="?", help="risk file (YAML)")
+    parser.add_argument("--hazard", metavar="CURVE",
+                        help="a hazard curve file instead of a risk file (needs --median, "
+                             "--beta)")
+    parser.add_argument("--format", choices=FORMATS,
+                        help="of --hazard (default: usgs for .json, openquake for a .csv "
+                             "whose first line is a comment, else columns)")
+    parser.add_argument("--im", help="intensity measure of --hazard: pga, pgv, sa(T)")
+    parser.add_argument("--units", help="units of the IM column of a two-column --hazard")
+    parser.add_argument("--poe", type=_positive, metavar="T",
+                        help="the second column of --hazard is a probability of exceedance "
+                             "in T years (default: annual rates)")
+    parser.add_argument("--median", help="median of a known lognormal fragility, with units "
+                                          "(0.4g, 3.9 m/s^2, 30 cm/s)")
+    parser.add_argument("--beta", type=_beta, help="its dispersion")
+    parser.add_argument("--fragility-model", metavar="XML",
+                        help="a known fragility from an OpenQuake fragility model (NRML 0.5, "
+                             "continuous logncdf, limit state 'overturned')")
+    parser.add_argument("--function", metavar="ID",
+                        help="the fragilityFunction of --fragility-model (default: its only "
+                             "one)")
+    parser.add_argument("--years", type=_positive, help="period of the probability (default: "
+                                                        "the risk file's, else 50)")
+    parser.add_argument("--json", action="store_true", help="print the report as JSON (SI)")
+    parser.add_argument("-o", "--output", help="figure file (.png, .pdf, .svg)")
+    parser.add_argument("--map", help="risk map figure over the grid of bodies")
+    parser.add_argument("--csv", help="table: one row per body")
+    parser.add_argument("--dataset", help="netCDF dataset of the results")
+    parser.add_argument("--nrml", help="OpenQuake fragility model (NRML 0.5) of the fit")
+    return parser
+
+
+def _median(text, im):
+    """The median [SI] of ``--median`` in the IM's dimension, or a Problem."""
+    from .io.imt import im_dimension
+    from .io.units import parse_quantity
+
+    try:
+        q = parse_quantity(text, (im_dimension(im),))
+        if q.body_relative or not q.value > 0:
+            raise ValueError("must be positive, in fixed units")
+        return q.to_si()
+    except ValueError as err:
+        return Problem("--median", text, str(err))
+
+
+def _given_fragility(args, im, source=None):
+    """(median [SI], beta) of ``--median``/``--beta`` or ``--fragility-model``, or None when
+    none is given; FileProblems when they are incomplete or do not fit the IM ``im``."""
+    if args.fragility_model is not None:
+        from .probability.nrml import read_fragility_model
+
+        if args.median is not None or args.beta is not None:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        "give it or --median and --beta, not both")], source)
+        try:
+            functions = read_fragility_model(args.fragility_model)
+        except OSError as err:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"cannot read: {err.strerror}")], source) from None
+        except (ValueError, SyntaxError, AttributeError) as err:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"not a fragility model: {err}")], source) from None
+        if args.function is None and len(functions) > 1:
+            raise FileProblems([Problem("--function", None, "required: the model has "
+                                        f"{', '.join(functions)}")], source)
+        key = args.function if args.function is not None else next(iter(functions))
+        if key not in functions:
+            raise FileProblems([Problem("--function", key, "not in the model; it has "
+                                        f"{', '.join(functions)}")], source)
+        chosen = functions[key]
+        if chosen.im != im:
+            raise FileProblems([Problem("--fragility-model", args.fragility_model,
+                                        f"a fragility of {chosen.im}, the hazard is of "
+                                        f"{im}")], source)
+        return chosen.median, chosen.beta
+    if args.median is None and args.beta is None:
+        return None
+    if (args.median is None) != (args.beta is None):
+        raise FileProblems([Problem("--median" if args.median is None else "--beta", None,
+                                    "give --median and --beta together")], source)
+    median = _median(args.median, im)
+    if isinstance(median, Problem):
+        raise FileProblems([median], source)
+    return median, args.beta
+
+
+def _hazard_format(path, given):
+    if given:
+        return given
+    if path.suffix.lower() == ".json":
+        return "usgs"
+    try:
+        first = path.open().readline()
+    except OSError:
+        return "columns"
+    return "openquake" if first.startswith("#") and "investigation_time" in first \
+        else "columns"
+
+
+def _curve_only(args):
+    """The :class:`RiskOutcome` of ``--hazard`` with a known fragility, or problems."""
+    from .io.imt import normalize_im
+    from .probability import hazard_curve as hc
+    from .probability import risk_report
+
+    problems = [] if args.fragility_model is not None else [
+        Problem(opt, None, "required with --hazard (or --fragility-model)")
+        for opt, value in (("--median", args.median), ("--beta", args.beta)) if value is None]
+    path = Path(args.hazard)
+    fmt = _hazard_format(path, args.format)
+    im = None
+    if args.im is not None:
+        try:
+            im = normalize_im(args.im)
+        except ValueError as err:
+            problems.append(Problem("--im", args.im, str(err)))
+    elif fmt == "columns":
+        problems.append(Problem("--im", None, "required with a two-column --hazard"))
+    if fmt == "columns" and args.units is None:
+        problems.append(Problem("--units", None, "required with a two-column --hazard"))
+    if problems:
+        raise FileProblems(problems)
+    try:
+        if fmt == "openquake":
+            curve = hc.read_openquake_csv(path)
+        elif fmt == "usgs":
+            curve = hc.read_usgs_json(path, im)
+        else:
+            curve = hc.read_columns(path, im, args.units, "poe" if args.poe else "annual_rate",
+                                    args.poe)
+    except hc.HazardFileError as err:
+        raise FileProblems([Problem("--hazard", str(path),
+                                    str(err).removeprefix(f"{path}: "))]) from None
+    except OSError as err:
+        raise FileProblems([Problem("--hazard", str(path), f"cannot read: {err.strerror}")]) \
+            from None
+    if im is not None and curve.im != im:
+        raise FileProblems([Problem("--im", args.im, f"the curve is of {curve.im}")])
+    median, beta = _given_fragility(args, curve.im)
+    return risk_report.known(curve, median, beta, args.years or 50.0, name=path.stem)
+
+
+def _from_file(args):
+    """The outcome of a risk file, its default dataset path, and the file's spec."""
+    from .io.risk_schema import load_risk
+    from .probability import risk_report
+
+    spec = load_risk(args.risk)
+    folder = spec.folder / "results" / spec.name
+    given = _given_fragility(args, spec.checked.im or "pga", args.risk)
+    median, beta = (None, None) if given is None else given
+    outcome = risk_report.compute(spec, folder, say=_say, median=median, beta=beta)
+    if args.years is not None:
+        outcome = _with_years(outcome, args.years)
+    dataset = Path(spec.checked.output) if spec.checked.output else folder / "risk.nc"
+    if spec.checked.output and not dataset.is_absolute():
+        dataset = spec.folder / dataset
+    return outcome, dataset
+
+
+def _with_years(outcome, years):
+    """The outcome with its probabilities for another period."""
+    import dataclasses
+
+    import numpy as np
+
+    from .probability.hazard_curve import poe_from_rate
+
+    risks = np.empty(outcome.shape, dtype=object)
+    for index in np.ndindex(*outcome.shape):
+        r = outcome.risks[index]
+        if r is not None:
+            risks[index] = dataclasses.replace(
+                r, years=years, probability=float(poe_from_rate(r.annual_rate, years)),
+                probability_interval=tuple(float(p) for p in poe_from_rate(
+                    r.rate_interval, years)))
+    return dataclasses.replace(outcome, risks=risks, years=years)
+
+
+def _say(text):
+    from .runner.mpi import first_process
+
+    if first_process():
+        print(f"sweep.risk: {text}", file=sys.stderr, flush=True)
+
+
+def _pct(p):
+    return "n/a" if p is None or p != p else f"{100 * p:.3g} %"
+
+
+def print_report(outcome):
+    """One block per body: λ_O, P in years with its interval, return period, fragility, and
+    the disaggregation of λ_O by IM segment (segments with ≥ 1 % of it)."""
+    import numpy as np
+
+    curve = outcome.curve
+    factor, unit = (9.80665, "g") if curve.units == "m s-2" else (0.01, "cm/s")
+    print(f"hazard: {curve.source}")
+    for index in np.ndindex(*outcome.shape):
+        r, f = outcome.risks[index], outcome.fits[index]
+        print(f"{outcome.labels()[index]}:")
+        if f is not None and not f.identifiable and r is not None:
+            print(f"  fragility: a step at {r.median / factor:.3g} {unit}, in the gap where "
+                  f"the stripes separate ({f.reason}); the interval: a step anywhere in it")
+        elif f is not None:
+            lo, hi = f.theta_interval
+            print(f"  fragility: median {f.theta / factor:.3g} {unit} [{lo / factor:.3g}, "
+                  f"{hi / factor:.3g}], beta {f.beta:.3g} [{f.beta_interval[0]:.3g}, "
+                  f"{f.beta_interval[1]:.3g}] ({f.reason})")
+        elif r is not None:
+            print(f"  fragility (given): median {r.median / factor:.3g} {unit}, "
+                  f"beta {r.beta:.3g}")
+        if r is None:
+            print("  risk: not computed (the fragility is not identifiable)")
+            continue
+        lo, hi = r.rate_interval
+        interval = f" [{lo:.3g}, {hi:.3g}]" if np.isfinite(lo) else ""
+        plo, phi = r.probability_interval
+        pint = f" [{_pct(plo)}, {_pct(phi)}]" if np.isfinite(plo) else ""
+        print(f"  annual rate of overturning {r.annual_rate:.3g}/yr{interval}; return period "
+              f"{r.return_period:.3g} yr")
+        print(f"  probability in {r.years:g} years: {_pct(r.probability)}{pint}"
+              + ("" if outcome.target is None else
+                 f"; target {_pct(outcome.target)}: "
+                 + ("met" if r.probability <= outcome.target else "NOT met")))
+        print(f"  share from above the curve's last level {_pct(r.share_above)} (included), "
+              f"below its first level {_pct(r.share_below)} (estimate, not included)")
+        print(f"  {curve.im} segment [{unit}]     share of the rate")
+        for lower, upper, share in zip(r.lower, r.upper, r.shares):
+            if share >= 0.01:
+                top = "..." if not np.isfinite(upper) else f"{upper / factor:.3g}"
+                print(f"  {lower / factor:8.3g} - {top:<8} {100 * share:6.1f} %  "
+                      + "#" * int(round(40 * share)))
+    if outcome.target is not None and outcome.shape:
+        meeting = [outcome.labels()[i] for i in np.ndindex(*outcome.shape)
+                   if outcome.risks[i] is not None
+                   and outcome.risks[i].probability <= outcome.target]
+        sure = {outcome.labels()[i] for i in np.ndindex(*outcome.shape)
+                if outcome.risks[i] is not None
+                and outcome.risks[i].probability_interval[1] <= outcome.target}
+        print(f"bodies meeting the target ({_pct(outcome.target)} in {outcome.years:g} years): "
+              f"{len(meeting)} of {outcome.risks.size} ({len(sure)} also with the upper "
+              f"bound of the interval, marked *)")
+        for label in meeting:
+            print(f"  {label}{' *' if label in sure else ''}")
+
+
+def _csv_rows(outcome):
+    from .probability.risk_report import body_record
+    import numpy as np
+
+    rows = []
+    for index in np.ndindex(*outcome.shape):
+        record = body_record(outcome, index)
+        interval = record.get("interval") or {}
+        rows.append({"body": record["body"], **{d: record[d] for d in outcome.body_dims},
+                     "median": record["fragility"]["median"],
+                     "beta": record["fragility"]["beta"],
+                     "annual_rate": record["annual_rate"],
+                     "annual_rate_lower": (interval.get("annual_rate") or [None])[0],
+                     "annual_rate_upper": (interval.get("annual_rate") or [None, None])[1],
+                     "years": record["years"], "probability": record["probability"],
+                     "probability_lower": (interval.get("probability") or [None])[0],
+                     "probability_upper": (interval.get("probability") or [None, None])[1],
+                     "return_period": record["return_period"]})
+    return rows
+
+
+def _write_nrml(outcome, path):
+    import numpy as np
+
+    from .probability.nrml import write_fragility_model
+
+    functions = []
+    for index in np.ndindex(*outcome.shape):
+        f = outcome.fits[index]
+        if f is not None and f.identifiable:
+            label = outcome.labels()[index].replace(" = ", "=").replace(", ", "_")
+            functions.append((label.replace(" ", ""), f.theta, f.beta))
+    if not functions:
+        return None
+    return write_fragility_model(path, functions, outcome.curve.im,
+                                 description=f"overturning: {outcome.name}")
+
+
+def _draw(outcome, figure, risk_map):
+    import matplotlib
+    import numpy as np
+
+    matplotlib.use("Agg")
+    from .plots import risk as risk_plots
+
+    if figure:
+        shown = next((i for i in np.ndindex(*outcome.shape) if outcome.risks[i] is not None),
+                     next(np.ndindex(*outcome.shape)))
+        risk_plots.save(risk_plots.figure_body(outcome, shown), Path(figure))
+    if risk_map:
+        risk_plots.save(risk_plots.figure_map(outcome), Path(risk_map))
+
+
+@command
+def main(argv=None):
+    args = _parser().parse_args(argv)
+    source = args.risk or args.hazard
+    if (args.risk is None) == (args.hazard is None):
+        print("sweep.risk: give a risk file or --hazard CURVE (not both)", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    unusable = output_problems({"-o/--output": args.output, "--map": args.map,
+                                "--csv": args.csv, "--dataset": args.dataset,
+                                "--nrml": args.nrml})
+    if unusable:
+        print(FileProblems(unusable), file=sys.stderr)
+        return EXIT_BAD_INPUT
+    from .io.problems import reported
+    from .probability.risk_report import report, to_dataset, write_dataset
+    from .probability.site_studies import RunFailed
+
+    try:
+        with reported(source):
+            if args.hazard:
+                outcome = _curve_only(args)
+                dataset = Path(args.dataset) if args.dataset else None
+            else:
+                outcome, default = _from_file(args)
+                dataset = Path(args.dataset) if args.dataset else default
+    except RunFailed as err:
+        print(f"sweep.risk: {err}", file=sys.stderr)
+        return EXIT_FAILED
+    from .runner.mpi import first_process
+
+    if not first_process():  # under mpiexec: the ranks shared the stripes; rank 0 reports
+        return EXIT_OK
+    if args.map and not outcome.body_dims:
+        print("sweep.risk: --map needs a grid of bodies in the risk file", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    history = "python -m sweep.risk " + " ".join(sys.argv[1:] if argv is None else argv)
+    written = []
+    if dataset is not None:
+        write_dataset(to_dataset(outcome, history), dataset)
+        written.append(str(dataset))
+        nrml = Path(args.nrml) if args.nrml else dataset.with_name(
+            dataset.stem.replace("risk", "fragility") + ".xml")
+        if outcome.stripes is not None and _write_nrml(outcome, nrml):
+            written.append(str(nrml))
+    elif args.nrml and outcome.stripes is not None and _write_nrml(outcome, Path(args.nrml)):
+        written.append(args.nrml)
+    if args.csv:
+        write_csv(args.csv, _csv_rows(outcome))
+        written.append(args.csv)
+    if args.output or args.map:
+        _draw(outcome, args.output, args.map)
+        written += [p for p in (args.output, args.map) if p]
+    if args.json:
+        document = report(outcome)
+        document["written"] = written
+        print_json(document)
+    else:
+        print_report(outcome)
+        if written:
+            print(f"wrote {', '.join(written)}")
+    return EXIT_OK
+
+
+if __name__ == "__main__":
+    sys.exit(main())
