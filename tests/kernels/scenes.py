@@ -40,12 +40,16 @@ def pulse(amplitude, duration, **kw):
 
 
 def scene(B=0.1, H=0.3, mu=10.0, e_x=0.0, e_y=0.0, horizontal=None, vertical=None,
-          initial=None, mu_s=None, mu_k=None, mu_edge_s=None, mu_edge_k=None, **solver):
-    """A resolved scene; ``mu`` sets the four friction coefficients not given explicitly."""
+          initial=None, mu_s=None, mu_k=None, mu_edge_s=None, mu_edge_k=None, landing=None,
+          **solver):
+    """A resolved scene; ``mu`` sets the four friction coefficients not given explicitly;
+    ``landing`` the landing law (default: the kernel's)."""
     contact = {"mu_s": mu if mu_s is None else mu_s, "mu_k": mu if mu_k is None else mu_k,
                "mu_edge_s": mu if mu_edge_s is None else mu_edge_s,
                "mu_edge_k": mu if mu_edge_k is None else mu_edge_k,
                "e_x": e_x, "e_y": e_y}
+    if landing is not None:
+        contact["landing"] = landing
     return {"body": {"B": B, "H": H}, "contact": contact,
             "excitation": {"horizontal": horizontal or {"kind": "none"},
                            "vertical": vertical or {"kind": "none"}},

@@ -367,10 +367,12 @@ def test_face_impact_no_penetration_random():
 # --- flat landing, PHYSICS 2.3 -------------------------------------------------------------
 
 def _landing(k, lift=1e-6, t_after=0.02, mu=0.6, B=0.1, H=0.3):
-    """A block dropped flat so that it lands with (u, v) = (1, -k) m/s at t_land."""
+    """A block dropped flat so that it lands with (u, v) = (1, -k) m/s at t_land, under the
+    flat landing law."""
     y_dot = -math.sqrt(k * k - 2 * G * lift)
     t_land = (y_dot + k) / G
-    return scene(B, H, mu=mu, initial={"lift": lift, "x_dot": 1.0, "y_dot": y_dot},
+    return scene(B, H, mu=mu, landing="flat",
+                 initial={"lift": lift, "x_dot": 1.0, "y_dot": y_dot},
                  t_end=t_land + t_after, **TIGHT), t_land
 
 
