@@ -181,8 +181,9 @@ def _from_file(args):
     """The outcome of a risk file, its default dataset path, and the file's spec."""
     from .io.risk_schema import load_risk
     from .probability import risk_report
+    from .probability.risk_inputs import checked_hazard
 
-    spec = load_risk(args.risk)
+    spec = load_risk(args.risk, hazard=checked_hazard)
     folder = spec.folder / "results" / spec.name
     given = _given_fragility(args, spec.checked.im or "pga", args.risk)
     median, beta = (None, None) if given is None else given

@@ -1,13 +1,15 @@
-"""The reference of every key of scene, study and bodies files, generated from their models.
+"""The reference of every key of scene, study, bodies and risk files, generated from their
+models.
 
 ``python -m sweep.io.reference [--json-schema] [--docs DIR]`` writes ``docs/schema.md``: for
 each section of each kind of file, every key with its type, the units a quantity takes
 (``units.units_of`` of its dimensions), its default (the model's, else ``kernels.api.DEFAULTS``
 where the model leaves None) and a one-line description (the field's).  ``--json-schema``
-also writes ``docs/scene.schema.json`` and ``docs/study.schema.json``, JSON Schemas (2020-12)
-that editors check and complete YAML files with: pydantic's ``model_json_schema()`` with a
-quantity as a number or a string ``"<number> <unit>"`` (``units.QUANTITY_PATTERN``), its units
-in its description, an empty section allowed, and a study's scene and axes spelled out.
+also writes ``docs/scene.schema.json``, ``docs/study.schema.json`` and
+``docs/risk.schema.json``, JSON Schemas (2020-12) that editors check and complete YAML files
+with: pydantic's ``model_json_schema()`` with a quantity as a number or a string
+``"<number> <unit>"`` (``units.QUANTITY_PATTERN``), its units in its description, an empty
+section allowed, and a study's (a risk file's) scene and axes spelled out.
 """
 import argparse
 import json
@@ -21,13 +23,15 @@ from pathlib import Path
 from kernels.api import DEFAULTS
 
 from . import bodies_schema as bodies
+from . import risk_schema as risk
 from . import scene_schema as scene
 from . import study_schema as study
 from . import units, vocabulary
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 MARKDOWN = "schema.md"
-JSON_SCHEMAS = {"scene": "scene.schema.json", "study": "study.schema.json"}
+JSON_SCHEMAS = {"scene": "scene.schema.json", "study": "study.schema.json",
+                "risk": "risk.schema.json"}
 JSON_SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 
 Section = namedtuple("Section", "path model defaults")
@@ -60,11 +64,23 @@ BODIES = (Section("", bodies.BodiesFile, {}),
           Section("ensemble.levels.pga", bodies.LevelRange, {}),
           Section("ensemble.contact", bodies.ContactEntry,
                   {**DEFAULTS["contact"], "mu": bodies.DEFAULT_MU}))
+RISK = (Section("", risk.RiskFile, {}),
+        Section("hazard", risk.Hazard, {}),
+        Section("hazard.file", risk.CurveFile, {}),
+        Section("hazard.source", risk.SourceHazard, {}),
+        Section("hazard.source.sources[i] (kind: point)", risk.PointSource, {}),
+        Section("hazard.source.sources[i] (kind: area)", risk.AreaSource, {}),
+        Section("hazard.source.sources[i].recurrence", risk.Recurrence, {}),
+        Section("stripes", risk.Stripes, {}),
+        Section("stripes.scenario", risk.Scenario, {}),
+        Section("stripes.levels, hazard.source.levels (a mapping)", risk.LevelRange, {}),
+        Section("fragility", risk.Fragility, {}))
 FILES = (("Scene files", "`python -m sweep.scene SCENE.yaml` reads them; so does "
                          "`sweep.simulate`, and a study's `scene:` is one.", SCENE),
          ("Study files", "`python -m sweep.run STUDY.yaml` runs them (`sweep.run_study`).",
           STUDY),
-         ("Bodies files", "`python -m sweep.estimate BODIES.yaml` reads them.", BODIES))
+         ("Bodies files", "`python -m sweep.estimate BODIES.yaml` reads them.", BODIES),
+         ("Risk files", "`python -m sweep.risk RISK.yaml` reads them (docs/risk.md).", RISK))
 
 # The bodies models carry no field descriptions; these stand in for them (a description given
 # in the model wins).
@@ -248,9 +264,10 @@ def markdown():
     """The text of ``docs/schema.md``."""
     out = ["# Input files: every key", "",
            "Written by `python -m sweep.io.reference` from the models of `sweep.io.scene_schema`, "
-           "`sweep.io.study_schema` and `sweep.io.bodies_schema`: edit those, not this file.  "
-           "Editors can check and complete scene and study files with `docs/scene.schema.json` "
-           "and `docs/study.schema.json` (`--json-schema`).", "",
+           "`sweep.io.study_schema`, `sweep.io.bodies_schema` and `sweep.io.risk_schema`: edit "
+           "those, not this file.  Editors can check and complete scene, study and risk files "
+           "with `docs/scene.schema.json`, `docs/study.schema.json` and "
+           "`docs/risk.schema.json` (`--json-schema`).", "",
            "## Quantities", "",
            "A quantity is a number in SI units (m, s, rad, Hz and their products) or a string "
            "`\"<number> <unit>\"`: `10 cm`, `0.5 g`, `341.7 gal`, `90 deg`.  Unit names are "
@@ -343,6 +360,22 @@ def study_json_schema():
     return _finished(_nullable_sections(schema), "Study file (python -m sweep.run)")
 
 
+def risk_json_schema():
+    """The JSON Schema of risk files: its scene refers to the scene files' schema, its grid
+    names the body axes of a risk map."""
+    schema = _described_units(_bounded(risk.RiskFile.model_json_schema()))
+    properties = schema["properties"]
+    properties["scene"] = {"anyOf": [{"$ref": JSON_SCHEMAS["scene"]}, {"type": "null"}],
+                           "description": properties["scene"]["description"]}
+    values = {"type": "array", "minItems": 1, "items": {"type": ["number", "string"]}}
+    properties["grid"] = {"anyOf": [{"type": "object", "additionalProperties": False,
+                                     "minProperties": 1,
+                                     "properties": {axis: values for axis in risk.GRID_AXES}},
+                                    {"type": "null"}],
+                          "description": properties["grid"]["description"]}
+    return _finished(_nullable_sections(schema), "Risk file (python -m sweep.risk)")
+
+
 def write(folder=DOCS, json_schema=False):
     """Write ``schema.md`` (and, with ``json_schema``, the JSON Schemas) into ``folder``;
     returns the paths written."""
@@ -350,7 +383,8 @@ def write(folder=DOCS, json_schema=False):
     folder.mkdir(parents=True, exist_ok=True)
     texts = {MARKDOWN: markdown()}
     if json_schema:
-        for name, make in (("scene", scene_json_schema), ("study", study_json_schema)):
+        for name, make in (("scene", scene_json_schema), ("study", study_json_schema),
+                           ("risk", risk_json_schema)):
             texts[JSON_SCHEMAS[name]] = json.dumps(make(), indent=1, ensure_ascii=False) + "\n"
     for name, text in texts.items():
         (folder / name).write_text(text)
@@ -361,7 +395,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m sweep.io.reference",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--json-schema", action="store_true",
-                        help="also write the JSON Schemas of scene and study files")
+                        help="also write the JSON Schemas of scene, study and risk files")
     parser.add_argument("--docs", default=DOCS, metavar="DIR",
                         help="folder written into (default: the repository's docs/)")
     args = parser.parse_args(argv)

@@ -17,23 +17,25 @@ stripes of motions that give its fragility, the period and the target (docs/risk
     target: 0.02
     grid: {H: [40 cm, 80 cm], b_over_h: [0.2, 0.3]}     # optional: a risk map
 
-One pydantic model (:class:`RiskFile`) checks it; every problem is reported at once with its
-dotted path (``hazard.source.sources[0].recurrence.m_max``) and the value given.  What needs the
-hazard itself (a curve file that cannot be read, stripes outside the curve) is checked when
-the hazard is built (``sweep.probability.risk_inputs``), reported the same way.
+One pydantic model (:class:`RiskFile`), loaded by ``sweep.io.loader.load_file`` as scene,
+study and bodies files are, checks it; every problem is reported at once with its dotted path
+(``hazard.source.sources[0].recurrence.m_max``) and the value given.  What needs the hazard
+itself (a curve file that cannot be read, stripes outside the curve) is checked by the same
+model with a ``hazard`` function of its validation context (``sweep.probability.risk_inputs``
+gives it: the layer above builds curves), which keeps the curve it built.
 """
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Optional, Union
 
 import numpy as np
-from pydantic import (AfterValidator, Field, StrictInt, StrictStr, ValidationError,
-                      field_validator, model_validator)
+from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
+                      WithJsonSchema, field_validator, model_validator)
 
 from .imt import im_dimension, normalize_im
-from .problems import MISSING, FieldError, FileProblems, join_path, validation_problems
+from .loader import load_file
+from .problems import MISSING, FieldError, join_path
 from .scene_schema import Real, Seed, StrictModel, quantity
-from .yamlio import read_yaml, top_level_problems
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
 MECHANISMS = ("SS", "NS", "RS")
@@ -58,9 +60,10 @@ IMLevel = Annotated[quantity("acceleration", "velocity", gt=0), AfterValidator(_
 class LevelRange(StrictModel):
     """IM levels: ``{start, stop, num}`` (log-spaced) or a list."""
 
-    start: IMLevel
-    stop: IMLevel
-    num: Annotated[StrictInt, Field(ge=2, le=MAX_LEVELS)]
+    start: IMLevel = Field(description="first level")
+    stop: IMLevel = Field(description="last level")
+    num: Annotated[StrictInt, Field(ge=2, le=MAX_LEVELS)] = Field(
+        description="number of levels, log-spaced")
 
     @model_validator(mode="after")
     def _increasing(self):
@@ -74,12 +77,21 @@ class LevelRange(StrictModel):
         return np.geomspace(self.start.to_si(), self.stop.to_si(), self.num)
 
 
+_LEVEL_SCHEMA = {k: v for k, v in LevelRange.model_json_schema()["properties"]["start"].items()
+                 if k not in ("title", "description")}
+LEVELS_SCHEMA = {"anyOf": [LevelRange.model_json_schema(),  # a mapping, or a list
+                           {"type": "array", "minItems": 2, "items": _LEVEL_SCHEMA}]}
+
+
 def _level_list(value):
     return value if not isinstance(value, list) else {"values": value}
 
 
 class LevelList(StrictModel):
-    values: Annotated[list[IMLevel], Field(min_length=2, max_length=MAX_LEVELS)]
+    """IM levels written as a list, increasing."""
+
+    values: Annotated[list[IMLevel], Field(min_length=2, max_length=MAX_LEVELS)] = Field(
+        description="the levels, increasing")
 
     @model_validator(mode="after")
     def _increasing(self):
@@ -105,12 +117,14 @@ class Recurrence(StrictModel):
     """Truncated Gutenberg-Richter: ``rate`` of M >= ``m_min`` (or ``a``), ``b``, ``m_max``;
     or ``characteristic: true``: ``rate`` of M = ``m_min``."""
 
-    rate: Optional[Annotated[Real, Field(gt=0)]] = None
-    a: Optional[Real] = None
-    b: Annotated[Real, Field(gt=0, le=3)] = 1.0
-    m_min: Annotated[Real, Field(ge=4.0, le=8.5)]
-    m_max: Optional[Annotated[Real, Field(ge=4.0, le=8.5)]] = None
-    characteristic: bool = False
+    rate: Optional[Annotated[Real, Field(gt=0)]] = Field(
+        None, description="annual rate of earthquakes of M >= m_min [1/yr]")
+    a: Optional[Real] = Field(None, description="Gutenberg-Richter a-value (instead of rate)")
+    b: Annotated[Real, Field(gt=0, le=3)] = Field(1.0, description="Gutenberg-Richter b-value")
+    m_min: Annotated[Real, Field(ge=4.0, le=8.5)] = Field(description="smallest magnitude")
+    m_max: Optional[Annotated[Real, Field(ge=4.0, le=8.5)]] = Field(
+        None, description="largest magnitude")
+    characteristic: bool = Field(False, description="every earthquake of magnitude m_min")
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -140,24 +154,26 @@ class Recurrence(StrictModel):
 class PointSource(StrictModel):
     """A point at an epicentral ``distance`` from the site."""
 
-    kind: Literal["point"]
-    distance: quantity("length", ge=0)
-    depth: Positive
-    mechanism: Literal[MECHANISMS] = "SS"
-    recurrence: Recurrence
+    kind: Literal["point"] = Field(description="the kind of source")
+    distance: quantity("length", ge=0) = Field(description="epicentral distance to the site")
+    depth: Positive = Field(description="depth of the hypocentre")
+    mechanism: Literal[MECHANISMS] = Field("SS", description="strike-slip, normal or reverse")
+    recurrence: Recurrence = Field(description="how often it breaks, at which magnitudes")
 
 
 class AreaSource(StrictModel):
     """A rectangle ``east: [x0, x1]``, ``north: [y0, y1]`` around the site (the site at 0, 0),
     cut into cells of side ``spacing``."""
 
-    kind: Literal["area"]
-    east: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]
-    north: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]
-    spacing: Positive
-    depth: Positive
-    mechanism: Literal[MECHANISMS] = "SS"
-    recurrence: Recurrence
+    kind: Literal["area"] = Field(description="the kind of source")
+    east: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)] = Field(
+        description="[west edge, east edge] from the site")
+    north: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)] = Field(
+        description="[south edge, north edge] from the site")
+    spacing: Positive = Field(description="side of the cells")
+    depth: Positive = Field(description="depth of the hypocentres")
+    mechanism: Literal[MECHANISMS] = Field("SS", description="strike-slip, normal or reverse")
+    recurrence: Recurrence = Field(description="of the whole area")
 
     @model_validator(mode="after")
     def _ordered(self):
@@ -175,13 +191,17 @@ SourceEntry = Annotated[Union[PointSource, AreaSource], Field(discriminator="kin
 class SourceHazard(StrictModel):
     """A source model computed in the package (``sweep.probability.source_hazard``)."""
 
-    model: Literal[GMPE_NAMES] = "BSSA14"
-    im: StrictStr = "pga"
-    vs30: quantity("velocity", gt=0)
-    levels: Optional[Any] = None
-    sources: Annotated[list[SourceEntry], Field(min_length=1)]
+    model: Literal[GMPE_NAMES] = Field("BSSA14", description="the ground-motion model")
+    im: StrictStr = Field("pga", description="intensity measure: pga, pgv or sa(T)")
+    vs30: quantity("velocity", gt=0) = Field(
+        description="mean shear-wave velocity of the site's top 30 m")
+    levels: Optional[Annotated[Any, WithJsonSchema(LEVELS_SCHEMA)]] = Field(
+        None, description="IM levels of the curve: {start, stop, num} or a list (default: "
+                          "40 from 0.005 to 3 g, or 0.5 to 300 cm/s)")
+    sources: Annotated[list[SourceEntry], Field(min_length=1)] = Field(
+        description="the earthquake sources")
     distance_bins: Optional[Annotated[list[quantity("length", ge=0)], Field(min_length=2)]] \
-        = None
+        = Field(None, description="Rrup bin edges of the disaggregation")
 
     @field_validator("im")
     @classmethod
@@ -200,13 +220,19 @@ class SourceHazard(StrictModel):
 class CurveFile(StrictModel):
     """A hazard curve file: OpenQuake CSV, USGS JSON or two columns."""
 
-    path: StrictStr
-    format: Literal[FORMATS]
-    im: Optional[StrictStr] = None
-    units: Optional[StrictStr] = None
-    kind: Literal["annual_rate", "poe"] = "annual_rate"
-    investigation_time: Optional[Annotated[Real, Field(gt=0)]] = None
-    site: Annotated[StrictInt, Field(ge=0)] = 0
+    path: StrictStr = Field(description="the file, relative to the risk file's folder")
+    format: Literal[FORMATS] = Field(description="OpenQuake CSV, USGS JSON or two columns")
+    im: Optional[StrictStr] = Field(None, description="intensity measure: pga, pgv or sa(T) "
+                                                      "(required for two columns)")
+    units: Optional[StrictStr] = Field(None, description="unit of the IM column of a "
+                                                         "two-column file")
+    kind: Literal["annual_rate", "poe"] = Field(
+        "annual_rate", description="second column of a two-column file: annual rates, or "
+                                   "probabilities of exceedance in investigation_time")
+    investigation_time: Optional[Annotated[Real, Field(gt=0)]] = Field(
+        None, description="years of the probabilities (kind: poe)")
+    site: Annotated[StrictInt, Field(ge=0)] = Field(
+        0, description="row of an OpenQuake file of several sites")
 
     @field_validator("im")
     @classmethod
@@ -235,8 +261,9 @@ class CurveFile(StrictModel):
 class Hazard(StrictModel):
     """``file:`` or ``source:``."""
 
-    file: Optional[CurveFile] = None
-    source: Optional[SourceHazard] = None
+    file: Optional[CurveFile] = Field(None, description="a hazard curve file")
+    source: Optional[SourceHazard] = Field(None, description="a source model, its curve "
+                                                             "computed here")
 
     @model_validator(mode="after")
     def _one(self):
@@ -248,22 +275,27 @@ class Hazard(StrictModel):
 class Scenario(StrictModel):
     """One earthquake for every motion of the stripes (instead of the disaggregation)."""
 
-    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)]
-    distance: Positive
+    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)] = Field(description="moment magnitude")
+    distance: Positive = Field(description="distance to the rupture (Rrup)")
 
 
 class Stripes(StrictModel):
     """Multiple stripes: ``motions`` synthetic motions at each IM level, or the ``records``
     of an ensemble (bundled names or files) scaled to each level."""
 
-    levels: Any
-    motions: Annotated[StrictInt, Field(ge=2, le=MAX_MOTIONS)] = 10
+    levels: Annotated[Any, WithJsonSchema(LEVELS_SCHEMA)] = Field(
+        description="IM levels of the stripes: {start, stop, num} or a list")
+    motions: Annotated[StrictInt, Field(ge=2, le=MAX_MOTIONS)] = Field(
+        10, description="synthetic motions per stripe")
     records: Optional[Annotated[list[StrictStr], Field(min_length=2, max_length=MAX_MOTIONS)]] \
-        = None
-    seed: Seed = 0
-    scenario: Optional[Scenario] = None
-    vs30: Optional[quantity("velocity", gt=0)] = None
-    model: StrictStr = "boore2003"
+        = Field(None, description="bundled records' names or files' paths, the motions of "
+                                  "every stripe")
+    seed: Seed = Field(0, description="seed of the first synthetic motion")
+    scenario: Optional[Scenario] = Field(None, description="one earthquake for every motion "
+                                                           "(default: the disaggregation)")
+    vs30: Optional[quantity("velocity", gt=0)] = Field(
+        None, description="of the synthetic motions (default: the source model's)")
+    model: StrictStr = Field("boore2003", description="the stochastic ground-motion model")
 
     @field_validator("levels")
     @classmethod
@@ -287,26 +319,37 @@ class Stripes(StrictModel):
 class Fragility(StrictModel):
     """A known lognormal fragility: ``median`` (an IM with units) and ``beta``."""
 
-    median: IMLevel
-    beta: Annotated[Real, Field(ge=0, le=3)]
+    median: IMLevel = Field(description="median, in the units of the hazard's IM")
+    beta: Annotated[Real, Field(ge=0, le=3)] = Field(description="lognormal dispersion")
 
 
 class RiskFile(StrictModel):
-    """A risk file (module docstring)."""
+    """A risk file: a site's hazard, a body (or a grid of bodies), the stripes of motions
+    that give its fragility (or a known fragility), the period and the target."""
 
-    name: Optional[StrictStr] = None
-    title: Optional[StrictStr] = None
-    site: Optional[StrictStr] = None
-    hazard: Hazard
-    scene: Optional[dict] = None
-    stripes: Optional[Stripes] = None
-    fragility: Optional[Fragility] = None
-    years: Annotated[Real, Field(gt=0, le=1e6)] = 50.0
-    target: Optional[Annotated[Real, Field(gt=0, lt=1)]] = None
-    grid: Optional[dict[StrictStr, Annotated[list[Any], Field(min_length=1)]]] = None
-    confidence: Annotated[Real, Field(gt=0, lt=1)] = 0.95
-    replicates: Annotated[StrictInt, Field(ge=0, le=100_000)] = 1000
-    output: Optional[StrictStr] = None
+    name: Optional[StrictStr] = Field(None, description="names the outputs (default: the "
+                                                        "file's name)")
+    title: Optional[StrictStr] = Field(None, description="one line for people")
+    site: Optional[StrictStr] = Field(None, description="name of the site")
+    hazard: Hazard = Field(description="the site's hazard: a curve file or a source model")
+    scene: Optional[dict] = Field(None, description="the body simulated (a scene without "
+                                                    "excitation)")
+    stripes: Optional[Stripes] = Field(None, description="the motions that give the "
+                                                         "fragility")
+    fragility: Optional[Fragility] = Field(None, description="a known lognormal fragility "
+                                                             "instead of stripes")
+    years: Annotated[Real, Field(gt=0, le=1e6)] = Field(50.0, description="period of the "
+                                                                          "probability")
+    target: Optional[Annotated[Real, Field(gt=0, lt=1)]] = Field(
+        None, description="the largest acceptable probability of overturning in years")
+    grid: Optional[dict[StrictStr, Annotated[list[Any], Field(min_length=1)]]] = Field(
+        None, description="a risk map: lists of B, H, b_over_h, mu")
+    confidence: Annotated[Real, Field(gt=0, lt=1)] = Field(
+        0.95, description="of the intervals")
+    replicates: Annotated[StrictInt, Field(ge=0, le=100_000)] = Field(
+        1000, description="bootstrap replicates of the fit")
+    output: Optional[StrictStr] = Field(None, description="the netCDF dataset written")
+    _curve: Any = PrivateAttr(None)
 
     @field_validator("grid")
     @classmethod
@@ -354,6 +397,19 @@ class RiskFile(StrictModel):
             raise FieldError.several(errors)
         return self
 
+    @model_validator(mode="wrap")
+    @classmethod
+    def _with_its_hazard(cls, data, handler, info):
+        """The file checked by the fields and the rules above, then, with a ``hazard``
+        function in the context (``hazard(checked, base_dir) -> curve``, raising
+        :class:`FieldError` for a curve that cannot be built or stripes outside it), its
+        hazard curve, kept as ``_curve``."""
+        checked = handler(data)
+        context = info.context or {}
+        if context.get("hazard") is not None:
+            checked._curve = context["hazard"](checked, context.get("base_dir") or Path("."))
+        return checked
+
     @property
     def im(self):
         return self.hazard.source.im if self.hazard.source is not None else self.hazard.file.im
@@ -366,10 +422,12 @@ _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields}
 
 @dataclass(frozen=True)
 class RiskSpec:
-    """A checked risk file: the model and where it was read (relative paths from there)."""
+    """A checked risk file: the model, where it was read (relative paths from there) and its
+    hazard curve (None when loaded without a ``hazard`` function)."""
 
     checked: RiskFile
     source: Path = None
+    curve: Any = None
 
     @property
     def folder(self):
@@ -395,22 +453,28 @@ def _dotted(loc):
     return path
 
 
-def load_risk(source):
+def load_risk(source, *, hazard=None):
     """Read and check a risk file (or a dict of its schema); every problem at once.
+
+    Parameters
+    ----------
+    source : str, Path or dict
+    hazard : callable, optional
+        ``hazard(checked, base_dir)``: the file's hazard curve, raising ``FieldError``
+        (``sweep.probability.risk_inputs.checked_hazard``); without it the curve is neither
+        built nor checked.
+
+    Returns
+    -------
+    RiskSpec
 
     Raises
     ------
     FileProblems
         With dotted paths and the values given.
     """
-    raw = source if isinstance(source, dict) else read_yaml(source)
-    path = None if isinstance(source, dict) else Path(source)
-    top = top_level_problems(raw, [], "risk file", "hazard, scene, stripes, years")
-    if top:
-        raise FileProblems(top, path)
-    try:
-        checked = RiskFile.model_validate(raw)
-    except ValidationError as err:
-        raise FileProblems(validation_problems(err, _FIELD_NAMES, dotted=_dotted,
-                                               tags=("point", "area")), path) from None
-    return RiskSpec(checked, path)
+    checked = load_file(source, RiskFile, "risk file", "hazard, scene, stripes, years",
+                        _FIELD_NAMES, context={"hazard": hazard}, dotted=_dotted,
+                        tags=("point", "area"))
+    return RiskSpec(checked, None if isinstance(source, dict) else Path(source),
+                    checked._curve)

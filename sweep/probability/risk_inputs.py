@@ -1,11 +1,12 @@
 """The hazard of a risk file (``sweep.io.risk_schema``): a curve read from a file or computed
-from its source model, and the checks that need it (stripes inside the curve), reported as
-problems of the file with their dotted paths."""
+from its source model, and the checks that need it (stripes inside the curve), made by the
+file's model (:func:`checked_hazard` in its validation context) and reported as problems of
+the file with their dotted paths."""
 from pathlib import Path
 
 import numpy as np
 
-from ..io.problems import FileProblems, Problem
+from ..io.problems import FieldError
 from . import hazard_curve as hc
 from . import source_hazard as sh
 
@@ -71,40 +72,40 @@ def read_curve(entry, folder):
     return curve
 
 
-def hazard(spec):
-    """The hazard curve of a checked risk file (``RiskSpec``).
+def checked_hazard(checked, folder):
+    """The hazard curve of a risk file's model (``RiskFile``), its paths relative to
+    ``folder``.
 
     Raises
     ------
-    FileProblems
+    FieldError
         An unreadable or unusable curve (``hazard.file.path``), stripe levels outside the
         curve (``stripes.levels``).
     """
-    checked = spec.checked
     try:
         if checked.hazard.file is not None:
-            curve = read_curve(checked.hazard.file, spec.folder)
+            curve = read_curve(checked.hazard.file, folder)
         else:
             entry = checked.hazard.source
             curve = source_model(entry).curve(hazard_levels(entry))
     except (hc.HazardFileError, OSError) as err:
-        where = "hazard.file.path" if checked.hazard.file is not None else "hazard.source"
-        value = checked.hazard.file.path if checked.hazard.file is not None else "..."
         message = str(err) if isinstance(err, hc.HazardFileError) else \
             f"cannot read: {err.strerror or err}"
-        if checked.hazard.file is not None:
-            message = message.removeprefix(f"{read_path(checked.hazard.file, spec.folder)}: ")
-        raise FileProblems([Problem(where, value, message)], spec.source) from None
+        if checked.hazard.file is None:
+            raise FieldError(("hazard", "source"), "...", message) from None
+        raise FieldError(("hazard", "file", "path"), checked.hazard.file.path,
+                         message.removeprefix(f"{read_path(checked.hazard.file, folder)}: ")) \
+            from None
     if checked.stripes is not None:
         levels = stripe_levels(checked.stripes)
         outside = [i for i, x in enumerate(levels)
                    if not curve.levels[0] <= x <= curve.levels[-1]]
         if outside:
-            raise FileProblems([Problem(
-                f"stripes.levels[{outside[0]}]" if len(outside) == 1 else "stripes.levels",
-                f"{levels[outside[0]]:.4g} {curve.units}",
-                f"outside the hazard curve ({curve.levels[0]:.4g} to "
-                f"{curve.levels[-1]:.4g} {curve.units})")], spec.source)
+            raise FieldError(("stripes", "levels", outside[0]) if len(outside) == 1
+                             else ("stripes", "levels"),
+                             f"{levels[outside[0]]:.4g} {curve.units}",
+                             f"outside the hazard curve ({curve.levels[0]:.4g} to "
+                             f"{curve.levels[-1]:.4g} {curve.units})")
     return curve
 
 

@@ -85,12 +85,12 @@ def known(curve, median, beta, years, target=None, confidence=0.95, name="risk")
 def compute(spec, folder, say=None, median=None, beta=None):
     """The :class:`RiskOutcome` of a checked risk file; stripe studies in ``folder``.
 
+    ``spec`` is loaded with its hazard (``load_risk(..., hazard=risk_inputs.checked_hazard)``).
     ``median``, ``beta``: a known fragility instead of the stripes (the command's
-    ``--median``, ``--beta``).  Raises ``FileProblems`` (``risk_inputs.hazard``) and what
-    ``stripes.run`` raises.
+    ``--median``, ``--beta``).  Raises what ``stripes.run`` raises.
     """
     checked = spec.checked
-    curve = risk_inputs.hazard(spec)
+    curve = spec.curve
     common = dict(target=checked.target, confidence=checked.confidence, name=spec.name)
     if median is None and checked.fragility is not None:
         median, beta = checked.fragility.median.to_si(), float(checked.fragility.beta)

@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 from kernels.api import DEFAULTS
-from sweep.io import bodies_schema, reference, scene_schema, study_schema
+from sweep.io import bodies_schema, reference, risk_schema, scene_schema, study_schema
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
@@ -24,7 +24,8 @@ def written(tmp_path_factory):
     return {path.name: path.read_text() for path in reference.write(folder, json_schema=True)}
 
 
-@pytest.mark.parametrize("name", ["schema.md", "scene.schema.json", "study.schema.json"])
+@pytest.mark.parametrize("name", ["schema.md", "scene.schema.json", "study.schema.json",
+                                  "risk.schema.json"])
 def test_docs_are_up_to_date(written, name):
     assert (DOCS / name).read_text() == written[name], f"docs/{name} is stale: run {REGENERATE}"
 
@@ -43,7 +44,8 @@ def test_every_field_of_every_model_is_described(written):
     models = {section.model: reference.heading(title, section)
               for title, _, file_sections in reference.FILES for section in file_sections}
     expected = {*scene_schema._MODELS, *bodies_schema._MODELS, study_schema.StudyFile,
-                study_schema.RangeSpec, study_schema.RefineSpec}
+                study_schema.RangeSpec, study_schema.RefineSpec,
+                *set(risk_schema._MODELS) - {risk_schema.LevelList}}  # levels: a plain list
     assert expected <= set(models)
     rows = 0
     for model, heading in models.items():
@@ -72,9 +74,9 @@ def test_rows_give_type_units_default_and_description(written):
     assert "in/s^2, ft/s^2" in written["schema.md"]
 
 
-def test_scene_and_study_fields_have_descriptions(written):
-    for _, _, file_sections in reference.FILES[:2]:
-        for section in file_sections:
+def test_scene_study_and_risk_fields_have_descriptions(written):
+    for title, _, file_sections in reference.FILES:
+        for section in file_sections if title != "Bodies files" else ():
             for key in section.model.model_fields:
                 assert reference._description(section.model, key), (section.path, key)
 
@@ -91,15 +93,16 @@ def _validator(written, kind):
 
 
 def test_json_schemas_accept_every_bundled_file(written):
-    validators = {kind: _validator(written, kind) for kind in ("scene", "study")}
+    validators = {kind: _validator(written, kind) for kind in ("scene", "study", "risk")}
     checked = 0
     for path in sorted((ROOT / "studies").glob("*.yaml")):
         raw = yaml.safe_load(path.read_text())
-        if ("body" in raw or "grid" in raw) and "hazard" not in raw:  # risk files apart
-            errors = list(validators["study" if "grid" in raw else "scene"].iter_errors(raw))
+        if "body" in raw or "grid" in raw or "hazard" in raw:
+            kind = "risk" if "hazard" in raw else "study" if "grid" in raw else "scene"
+            errors = list(validators[kind].iter_errors(raw))
             assert not errors, (path.name, errors[0].message)
             checked += 1
-    assert checked >= 30
+    assert checked >= 32
 
 
 @pytest.mark.parametrize("kind, raw, where", [
@@ -110,6 +113,9 @@ def test_json_schemas_accept_every_bundled_file(written):
      "sin"),
     ("study", {"scene": {"body": {"B": 0.1}}, "grid": {"mu": [0.2]}}, "H"),
     ("study", {"scene": {"body": {"B": 0.1, "H": 0.3}}, "grid": {"mu": {"num": 0}}}, "0"),
+    ("risk", {"hazard": {"file": {"path": "c.csv", "format": "csv"}}}, "csv"),
+    ("risk", {"hazard": {}, "grid": {"depth": [1]}}, "depth"),
+    ("risk", {"hazard": {}, "years": 0}, "0"),
 ])
 def test_json_schemas_refuse(written, kind, raw, where):
     errors = list(_validator(written, kind).iter_errors(raw))
