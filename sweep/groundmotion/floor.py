@@ -10,8 +10,8 @@ u_n'' + 2 zeta_n omega_n u_n' + omega_n^2 u_n = -a_g, and the floor moves with
 at rest when the ground starts.
 
 * A piecewise-linear ground (a record) is integrated exactly by the recursion of Nigam &
-  Jennings (1969), Chopra (2017) section 5.2, Table 5.2.1: the floor is exact at the record's
-  samples and is read, like the ground, linearly between them.  After the ground's last sample
+  Jennings (1969), Chopra (2017) section 5.2, Table 5.2.1 (``oscillator.response``): the
+  floor is exact at the record's samples and is read, like the ground, linearly between them.  After the ground's last sample
   the ground is still and the building rings down for ``decay_time``.
 * A sine is solved in closed form (steady state plus the free vibration that starts the
   building from rest, Chopra 2017 section 3.2), evaluated on a grid fine enough
@@ -40,6 +40,7 @@ from kernels import api
 from kernels._jit import jit
 from kernels.ground import component
 
+from .oscillator import response
 from .record import Record
 
 Mode = namedtuple("Mode", "period damping participation")
@@ -68,45 +69,14 @@ def decay_time(modes):
     return math.log(1.0 / DECAY) / min(rates) if rates else 0.0
 
 
-@jit
-def _relative_acceleration(p, dt, omega, zeta):
-    """u'' at the samples of the oscillator u'' + 2 zeta omega u' + omega^2 u = p, p piecewise
-    linear between the samples, from rest: the recursion of Chopra (2017) Table 5.2.1."""
-    k = omega * omega
-    root = math.sqrt(1.0 - zeta * zeta)
-    wd = omega * root
-    e = math.exp(-zeta * omega * dt)
-    s = math.sin(wd * dt)
-    c = math.cos(wd * dt)
-    z = zeta / root
-    a = e * (z * s + c)
-    b = e * s / wd
-    cc = (2.0 * zeta / (omega * dt) + e * (((1.0 - 2.0 * zeta * zeta) / (wd * dt) - z) * s
-                                            - (1.0 + 2.0 * zeta / (omega * dt)) * c)) / k
-    d = (1.0 - 2.0 * zeta / (omega * dt) + e * ((2.0 * zeta * zeta - 1.0) / (wd * dt) * s
-                                                 + 2.0 * zeta / (omega * dt) * c)) / k
-    a1 = -e * omega / root * s
-    b1 = e * (c - z * s)
-    c1 = (-1.0 / dt + e * ((omega / root + z / dt) * s + c / dt)) / k
-    d1 = (1.0 - e * (z * s + c)) / (k * dt)
-    out = np.empty(p.size)
-    u = 0.0
-    v = 0.0
-    out[0] = p[0]
-    for i in range(p.size - 1):
-        u, v = (a * u + b * v + cc * p[i] + d * p[i + 1],
-                a1 * u + b1 * v + c1 * p[i] + d1 * p[i + 1])
-        out[i + 1] = p[i + 1] - 2.0 * zeta * omega * v - k * u
-    return out
-
-
 def record_response(samples, dt, modes):
     """Floor acceleration at the samples of a piecewise-linear ground acceleration."""
     ground = np.ascontiguousarray(samples, dtype=np.float64)
     floor = ground.copy()
     for m in _flexible(modes):
-        floor += m.participation * _relative_acceleration(-ground, dt,
-                                                          2.0 * math.pi / m.period, m.damping)
+        omega, zeta = 2.0 * math.pi / m.period, m.damping
+        u, v = response(-ground, dt, omega, zeta)  # u'' = -a_g - 2 zeta omega u' - omega^2 u
+        floor += m.participation * (-ground - 2.0 * zeta * omega * v - omega * omega * u)
     return floor
 
 

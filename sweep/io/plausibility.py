@@ -48,7 +48,7 @@ _SIZES = {"B": "a body {:g} m wide", "H": "a body {:g} m tall",
           "i_g": "a radius of gyration of {:g} m", "R_1": "G {:g} m from its left corner",
           "R_2": "G {:g} m from its right corner"}
 _FRICTION = ("mu", "mu_s", "mu_k", "mu_edge_s", "mu_edge_k")
-_SCALING = ("scale_with", "scale", "pga", "pgv")
+_SCALING = ("scale_with", "scale", "pga", "pgv", "sa")
 
 
 class ReadsAsG(Problem):
@@ -193,8 +193,10 @@ def _record_doubt(component, g, ground):
         return None
     key = next((name for name in _SCALING if getattr(g, name) is not None),
                "model" if g.kind == "synthetic" else "name" if g.name is not None else "path")
-    said = Path(g.path).name if key == "path" else getattr(g, key)
-    return Problem(f"excitation.{component}.{key}", str(getattr(g, key)),
+    value = g.sa.value if key == "sa" else getattr(g, key)
+    key = "sa.value" if key == "sa" else key
+    said = Path(g.path).name if key == "path" else value
+    return Problem(f"excitation.{component}.{key}", str(value),
                    f"{said}: the motion's PGA after scaling is {pga / G:.3g} g, above "
                    f"{MAX_PGA / G:g} g; are the record's units and the scale meant?")
 

@@ -380,9 +380,6 @@ class RiskFile(StrictModel):
                     errors.append((("stripes", "vs30"), MISSING,
                                    "required with a hazard curve file"))
         im = self.im
-        if self.stripes is not None and im not in (None, "pga"):
-            errors.append((("stripes", "levels"), im, "stripes scale the motions to PGA: the "
-                                                      "hazard must be of pga"))
         if self.fragility is not None and im is not None and \
                 self.fragility.median.dimension != im_dimension(im):
             errors.append((("fragility", "median"), str(self.fragility.median),

@@ -23,6 +23,7 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Di
 from kernels.api import DEFAULTS, PackingError, scene_row
 from kernels.codes import LANDING_NAMES
 
+from ..groundmotion.oscillator import pseudo_acceleration
 from . import floors, records, units
 from .units import Quantity
 from .loader import load_file
@@ -32,6 +33,7 @@ T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to sett
 MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
 SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks within 1.3 %
 KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic", "floor")
+SCALE_KEYS = ("scale", "pga", "pgv", "sa")  # how a record or synthetic motion is scaled
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
 MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 scene field holds exactly
@@ -263,10 +265,19 @@ class SweepMotion(_Phased):
             raise ValueError(f"{err} (hold: {hold})") from None
 
 
+class SpectralTarget(StrictModel):
+    """The 5 %-damped pseudo-spectral acceleration Sa(T) a motion is scaled to
+    (``sweep.groundmotion.oscillator``); T = 0 is the PGA."""
+
+    period: Instant = Field(description="period T of the oscillator")
+    value: quantity("acceleration", gt=0) = Field(description="Sa(T, 5 %) after scaling")
+
+
 class _Scaled(_Ground):
-    """An accelerogram multiplied by ``scale``, or scaled so that its PGA or its PGV
-    (``sweep.groundmotion.intensity``) is the one given; a vertical component may take the
-    horizontal one's factor instead (``scale_with: horizontal``), which keeps their ratio."""
+    """An accelerogram multiplied by ``scale``, or scaled so that its PGA, its PGV
+    (``sweep.groundmotion.intensity``) or its Sa(T) is the one given; a vertical component may
+    take the horizontal one's factor instead (``scale_with: horizontal``), which keeps their
+    ratio."""
 
     scale: Optional[Real] = Field(None, description="factor on the samples (-1 flips the "
                                                     "polarity)")
@@ -274,19 +285,23 @@ class _Scaled(_Ground):
         None, description="the PGA the motion is scaled to")
     pgv: Optional[quantity("velocity", gt=0)] = Field(
         None, description="the PGV (after a 0.1 Hz baseline correction) it is scaled to")
+    sa: Optional[SpectralTarget] = Field(
+        None, description="the 5 %-damped pseudo-spectral acceleration it is scaled to: "
+                          "{period, value}")
     scale_with: Optional[Literal["horizontal"]] = Field(
         None, description="vertical only: the horizontal component's scale factor")
 
     @model_validator(mode="after")
     def _one_scale(self):
-        given = [key for key in ("scale", "pga", "pgv") if getattr(self, key) is not None]
+        given = [key for key in SCALE_KEYS if getattr(self, key) is not None]
         if self.scale_with is not None and given:
             raise FieldError("scale_with", self.scale_with,
                               f"takes the {self.scale_with} component's scale factor: give no "
                               f"{given[0]} with it")
         if len(given) > 1:
             raise FieldError(given[1], str(getattr(self, given[1])),
-                              f"give one of scale, pga and pgv, not {' and '.join(given)}")
+                              f"give one of scale, pga, pgv and sa, not "
+                              f"{' and '.join(given)}")
         return self
 
 
@@ -582,7 +597,8 @@ class Scene(StrictModel):
 # --- errors -----------------------------------------------------------------------------------
 
 _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
-           PulseMotion, SyntheticMotion, FloorMotion, Building, BuildingMode, Initial, Solver)
+           SpectralTarget, PulseMotion, SyntheticMotion, FloorMotion, Building, BuildingMode,
+           Initial, Solver)
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
@@ -692,18 +708,21 @@ def _accelerogram(g):
 
 def _scale(g, rec, body, excitation):
     """Factor on a record's samples: that of the component ``scale_with`` names (resolved
-    before, in ``excitation``), ``scale``, or the one that gives its ``pga``/``pgv``."""
+    before, in ``excitation``), ``scale``, or the one that gives its ``pga``/``pgv``/``sa``."""
     if g.scale_with is not None:
         return excitation[g.scale_with]["scale"]
-    for key in ("pga", "pgv"):
-        target = getattr(g, key)
-        if target is not None:
-            peak = getattr(rec.intensity, key)
-            if not peak > 0:
-                raise FileProblems([Problem(key, str(target), "the motion is zero throughout: "
-                                                              "it cannot be scaled to a peak")])
-            return target.to_si(body) / peak
-    return DEFAULTS["ground"]["scale"] if g.scale is None else g.scale
+    if g.pga is not None or g.pgv is not None:
+        key = "pga" if g.pga is not None else "pgv"
+        target, measured = getattr(g, key), getattr(rec.intensity, key)
+    elif g.sa is not None:
+        key, target = "sa.value", g.sa.value
+        measured = pseudo_acceleration(rec.samples, rec.dt, g.sa.period.to_si())
+    else:
+        return DEFAULTS["ground"]["scale"] if g.scale is None else g.scale
+    if not measured > 0:
+        raise FileProblems([Problem(key, str(target), "the motion is zero throughout: it "
+                                                      "cannot be scaled to a peak")])
+    return target.to_si(body) / measured
 
 
 def _ground(g, body, excitation, t_end=None):

@@ -111,7 +111,7 @@ def compute(spec, folder, say=None, median=None, beta=None):
     vs30 = entry.vs30.to_si() if entry.vs30 is not None else \
         (model.vs30 if model is not None else None)
     paths = stripe_analysis.write_studies(plan, checked.scene, vs30, checked.grid, spec.name,
-                                          folder, entry.model)
+                                          folder, entry.model, curve.im)
     datasets = stripe_analysis.run(paths, say)
     k, n = stripe_analysis.counts(datasets)
     fits = stripe_analysis.fit(levels, stripe_analysis.outcomes(datasets),

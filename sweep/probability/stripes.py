@@ -6,9 +6,11 @@ likelihood over the stripes with bootstrap intervals (``sweep.probability.fit``)
 The motions of stripe j are Boore's (2003) stochastic motions (``sweep.groundmotion``) of
 earthquakes drawn from the disaggregation of the hazard at that level
 (``SourceModel.draw``: the (M, R) that dominate it, so that each stripe carries the frequency
-content of the shaking that produces it), or of one stated scenario, each scaled to the PGA
-of the level as the site ensembles are.  Seeds: ``seed + j × motions + i`` for motion i of
-stripe j, so that no two motions share their noise.
+content of the shaking that produces it), or of one stated scenario, each scaled to the level
+of the hazard's IM: its PGA, its PGV or its 5 %-damped Sa(T) (the scene's ``pga``, ``pgv`` or
+``sa`` key, ``sweep.io.scene_schema``), as the site ensembles are scaled to a PGA.  Seeds:
+``seed + j × motions + i`` for motion i of stripe j, so that no two motions share their
+noise.
 
 A user's records (``stripes.records``) are the motions of every stripe instead, each scaled
 to the level (the same records at every level, as in Baker 2015's multiple stripes).
@@ -33,7 +35,7 @@ MAGNITUDE_DIGITS = 4  # decimals of a drawn magnitude
 DISTANCE_STEP = 1.0  # m: drawn distances are rounded to this
 
 Stripe = namedtuple("Stripe", "level seeds magnitudes distances")
-Stripe.__doc__ = """The motions of one stripe: IM ``level`` [m/s²], and per motion its seed,
+Stripe.__doc__ = """The motions of one stripe: IM ``level`` [SI], and per motion its seed,
 magnitude and Rrup [m]; for records (:func:`record_plan`) ``seeds`` and ``magnitudes`` are
 None and ``distances`` holds the records."""
 
@@ -81,30 +83,42 @@ def record_plan(levels, records):
     return [Stripe(float(level), None, None, list(records)) for level in levels]
 
 
-def _record_study(stripe, scene, grid, name, output):
+def scaling(im, level):
+    """The scene keys that scale a motion to ``level`` [SI] of the IM ``im`` (``pga``,
+    ``pgv``, ``sa(T)``), and the level in words."""
+    if im == "pgv":
+        return {"pgv": f"{level!r} m/s"}, f"PGV {level:.4g} m/s"
+    if im.startswith("sa("):
+        period = float(im[3:-1])
+        return ({"sa": {"period": period, "value": f"{level!r} m/s^2"}},
+                f"Sa({period:g} s) {level:.4g} m/s^2")
+    return {"pga": f"{level!r} m/s^2"}, f"PGA {level:.4g} m/s^2"
+
+
+def _record_study(stripe, scene, grid, name, output, im):
     from ..io import records
 
     first = stripe.distances[0]
+    scaled, said = scaling(im, stripe.level)
     excitation = {"kind": "record", **({"name": first} if first in records.NAMES
-                                       else {"path": first}), "pga": f"{stripe.level!r} m/s^2"}
+                                       else {"path": first}), **scaled}
     scene = {k: v for k, v in (scene or {}).items() if k != "excitation"}
     scene["excitation"] = {"horizontal": excitation}
     return {"name": name,
-            "title": f"stripe at PGA {stripe.level:.4g} m/s^2: {len(stripe.distances)} "
-                     "records (sweep.risk)",
+            "title": f"stripe at {said}: {len(stripe.distances)} records (sweep.risk)",
             "scene": scene, "grid": {**(grid or {}), "record": list(stripe.distances)},
             "output": str(output)}
 
 
-def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003"):
+def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003", im="pga"):
     """The study of one stripe: the base ``scene`` (body, contact, solver), a synthetic
-    horizontal motion scaled to the stripe's PGA (or the records of a :func:`record_plan`);
-    grid = ``grid`` (body axes) × the motions."""
+    horizontal motion scaled to the stripe's level of ``im`` (or the records of a
+    :func:`record_plan`); grid = ``grid`` (body axes) × the motions."""
     if stripe.seeds is None:
-        return _record_study(stripe, scene, grid, name, output)
+        return _record_study(stripe, scene, grid, name, output, im)
+    scaled, said = scaling(im, stripe.level)
     first = {"kind": "synthetic", "model": motion_model, "magnitude": stripe.magnitudes[0],
-             "distance": stripe.distances[0], "vs30": vs30, "seed": stripe.seeds[0],
-             "pga": f"{stripe.level!r} m/s^2"}
+             "distance": stripe.distances[0], "vs30": vs30, "seed": stripe.seeds[0], **scaled}
     scene = {k: v for k, v in (scene or {}).items() if k != "excitation"}
     scene["excitation"] = {"horizontal": first}
     axes = {"seed": list(stripe.seeds)}
@@ -113,17 +127,16 @@ def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003"
     if len(set(stripe.distances)) > 1:
         axes[DISTANCE_AXIS] = list(stripe.distances)
     study = {"name": name,
-             "title": f"stripe at PGA {stripe.level:.4g} m/s^2: {len(stripe.seeds)} synthetic "
-                      "motions (sweep.risk)",
+             "title": f"stripe at {said}: {len(stripe.seeds)} synthetic motions (sweep.risk)",
              "scene": scene, "grid": {**(grid or {}), **axes}, "output": str(output)}
     if len(axes) > 1:
         study["zip"] = {MEMBER: list(axes)}
     return study
 
 
-def write_studies(stripes, scene, vs30, grid, name, folder, motion_model="boore2003"):
-    """Write the study of every stripe to ``folder`` (``<name>_stripe<j>.yaml``, output
-    beside it); the paths."""
+def write_studies(stripes, scene, vs30, grid, name, folder, motion_model="boore2003", im="pga"):
+    """Write the study of every stripe (motions scaled to its level of ``im``) to ``folder``
+    (``<name>_stripe<j>.yaml``, output beside it); the paths."""
     import yaml
 
     folder = Path(folder).resolve()
@@ -132,7 +145,7 @@ def write_studies(stripes, scene, vs30, grid, name, folder, motion_model="boore2
     for j, stripe in enumerate(stripes):
         path = folder / f"{name}_stripe{j}.yaml"
         study = study_dict(stripe, scene, vs30, grid, f"{name}_stripe{j}",
-                           folder / f"{name}_stripe{j}.nc", motion_model)
+                           folder / f"{name}_stripe{j}.nc", motion_model, im)
         text = yaml.safe_dump(study, sort_keys=False)
         if not path.is_file() or path.read_text() != text:
             path.write_text(text)

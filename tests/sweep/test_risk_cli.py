@@ -125,6 +125,39 @@ def test_record_stripes_resample_records(tmp_path, capsys):
     assert stripes["records"] == records and stripes["motions"] == [3, 3]
 
 
+@pytest.mark.parametrize("im, levels, key", [
+    ("pgv", ["10 cm/s", "40 cm/s"], "pgv"),
+    ("sa(0.3)", ["3 m/s^2", "10 m/s^2"], "sa"),
+])
+def test_stripes_of_pgv_and_sa_scale_the_motions_to_their_level(tmp_path, capsys, im, levels,
+                                                                   key):
+    """A PGV or Sa(0.3 s) hazard: every motion of a stripe has that IM at the stripe's level
+    (measured on the motion the cell applies), and the fit runs on those levels."""
+    from sweep.groundmotion.oscillator import pseudo_acceleration
+    from sweep.io.scene_schema import load_scene, resolve_scene
+
+    path = tmp_path / "risk.yaml"
+    path.write_text(yaml.safe_dump({"name": "t", "hazard": {"source": {
+        **SOURCE, "im": im, "levels": None}}, "scene": {"body": {"B": "15 cm", "H": "60 cm"},
+                                                         "contact": {"mu": 0.8}},
+        "stripes": {"levels": levels, "motions": 3}, "replicates": 20}))
+    assert main([str(path), "--json"]) == 0
+    report = _json(capsys)
+    assert report["hazard"]["im"] == im
+    assert report["bodies"][0]["fragility"]["stripes"]["motions"] == [3, 3]
+    for j, level in enumerate(report["bodies"][0]["fragility"]["stripes"]["levels"]):
+        study = yaml.safe_load((tmp_path / "results" / "t" / f"t_stripe{j}.yaml").read_text())
+        assert key in study["scene"]["excitation"]["horizontal"]
+        for seed in study["grid"]["seed"]:
+            scene = study["scene"]
+            scene["excitation"]["horizontal"]["seed"] = seed
+            ground = resolve_scene(load_scene(scene))["excitation"]["horizontal"]
+            samples = ground["scale"] * ground["source"].samples
+            measured = (ground["scale"] * ground["source"].intensity.pgv if key == "pgv"
+                        else pseudo_acceleration(samples, ground["dt"], 0.3))
+            assert measured == pytest.approx(level, rel=1e-9)
+
+
 def test_records_take_no_scenario(tmp_path, capsys):
     path = _risk_file(tmp_path, scene={"body": {"B": "15 cm", "H": "60 cm"}},
                       stripes={"levels": ["2 m/s^2", "6 m/s^2"], "records": ["a", "a"],

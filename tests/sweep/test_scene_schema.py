@@ -103,7 +103,7 @@ def test_duplicate_keys_reported_with_path(tmp_path):
     ({"kind": "record"}, "excitation.horizontal.name", "required"),
     ({"kind": "record", "name": "elcentro"}, "excitation.horizontal.name", "unknown record"),
     ({"kind": "record", "name": "elcentro1940_ns", "scale": 2, "pga": "0.5 g"},
-     "excitation.horizontal.pga", "one of scale, pga and pgv, not scale and pga"),
+     "excitation.horizontal.pga", "one of scale, pga, pgv and sa, not scale and pga"),
     ({"kind": "record", "name": "elcentro1940_ns", "units": "gal"},
      "excitation.horizontal.units", "path: file only"),
     ({"kind": "record", "path": "missing.AT2"}, "excitation.horizontal.path", "cannot read"),
