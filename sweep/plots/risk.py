@@ -9,6 +9,18 @@ from ..probability import risk as risk_integral
 from .style import fit_suptitle, log_axes, save_figure
 
 MAP_CMAP = "viridis"
+CONTOUR_COLOR = "tab:red"  # seen on every colour of viridis
+# Relative luminance above which black text contrasts more than white (WCAG 2.1 contrast
+# ratio (L1 + 0.05)/(L2 + 0.05), equal for both at L = sqrt(1.05 * 0.05) - 0.05): at least
+# 4.58 on any colour.
+BLACK_OR_WHITE = np.sqrt(1.05 * 0.05) - 0.05
+
+
+def relative_luminance(colour):
+    """WCAG 2.1 relative luminance of an sRGB(A) colour with components in [0, 1]."""
+    c = np.asarray(colour[:3], dtype=float)
+    linear = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return float(linear @ [0.2126, 0.7152, 0.0722])
 
 
 def _scale(units):
@@ -121,23 +133,37 @@ def figure_map(outcome):
         mesh = ax.pcolormesh(xs, ys, grid.T, shading="nearest", cmap=MAP_CMAP, norm=norm)
         for i, x in enumerate(xs):
             for j, y in enumerate(ys):
-                text = "n/a" if not np.isfinite(grid[i, j]) else f"{100 * grid[i, j]:.2g} %"
-                ax.annotate(text, (x, y), xytext=(0, -9), textcoords="offset points",
-                            ha="center", va="top", fontsize=8,
-                            color="0.2" if not np.isfinite(grid[i, j]) else "w")
+                _cell_label(ax, mesh, x, y, grid[i, j])
         fig.colorbar(mesh, ax=ax, label=f"P(overturn in {outcome.years:g} yr)")
         if outcome.target is not None and np.isfinite(grid).sum() >= 4 and \
                 np.nanmin(grid) < outcome.target < np.nanmax(grid):
-            ax.contour(xs, ys, grid.T, levels=[outcome.target], colors="w", linewidths=2)
+            ax.contour(xs, ys, grid.T, levels=[outcome.target], colors=CONTOUR_COLOR,
+                       linewidths=2, zorder=2)
+            ax.plot([], [], color=CONTOUR_COLOR, lw=2,
+                    label=f"P = {outcome.target:g} (target), interpolated")
         if outcome.target is not None:
             ok = np.argwhere(grid <= outcome.target)
-            ax.plot(xs[ok[:, 0]], ys[ok[:, 1]], "w*", ms=8, ls="none",
-                    label=f"P ≤ {outcome.target:g} (target)")
-            if len(ok):
-                ax.legend(loc="best", fontsize=8)
+            ax.plot(xs[ok[:, 0]], ys[ok[:, 1]], "w*", mec="k", mew=0.6, ms=10, ls="none",
+                    zorder=4, label=f"P ≤ {outcome.target:g}: meets the target")
+        if ax.get_legend_handles_labels()[0]:
+            fig.legend(loc="outside lower center", ncols=2, fontsize=8)
         ax.set(xlabel=_label(outcome, dims[0]), ylabel=_label(outcome, dims[1]))
     fit_suptitle(fig, [f"risk map: {outcome.name}", outcome.curve.source])
     return fig
+
+
+def _cell_label(ax, mesh, x, y, value):
+    """The probability of a cell below its centre, on a box of the cell's colour above the
+    contour, in black or white, whichever contrasts more with that colour."""
+    if not np.isfinite(value):
+        ax.annotate("n/a", (x, y), xytext=(0, -9), textcoords="offset points", ha="center",
+                    va="top", fontsize=8, color="0.2")
+        return
+    colour = mesh.cmap(mesh.norm(value))
+    ax.annotate(f"{100 * value:.2g} %", (x, y), xytext=(0, -9), textcoords="offset points",
+                ha="center", va="top", fontsize=8, zorder=3,
+                color="k" if relative_luminance(colour) > BLACK_OR_WHITE else "w",
+                bbox={"boxstyle": "round,pad=0.2", "fc": colour, "ec": "none"})
 
 
 def _label(outcome, dim):

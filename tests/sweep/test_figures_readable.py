@@ -254,3 +254,62 @@ def test_fig17_legends_leave_every_curve_visible():
     assert_nothing_clipped(fig, renderer)
     assert all(ax.get_legend() is not None for ax in fig.axes)
     assert_legends_leave_data_visible(fig, renderer=renderer)
+
+
+def _contrast(a, b):
+    """WCAG 2.1 contrast ratio of two sRGB colours."""
+    def luminance(c):
+        c = np.asarray(c, dtype=float)
+        return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4) @ [
+            0.2126, 0.7152, 0.0722]
+    high, low = sorted((luminance(a), luminance(b)), reverse=True)
+    return (high + 0.05) / (low + 0.05)
+
+
+def test_risk_map_legend_names_the_contour_and_labels_stay_readable():
+    """The target's contour and the bodies meeting it are in the legend; every cell's label
+    lies inside its cell, above the contour, on the cell's colour with a WCAG contrast of at
+    least 4.5."""
+    from types import SimpleNamespace
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.colors import to_rgb
+
+    from sweep.plots.risk import figure_map
+    from sweep.probability.hazard_curve import HazardCurve
+    from sweep.probability.risk_report import RiskOutcome
+
+    p = np.array([[0.084, 0.016, 0.010], [0.064, 0.017, 0.0048], [0.023, 0.011, 0.0031]])
+    risks = np.empty(p.shape, dtype=object)
+    for index in np.ndindex(*p.shape):
+        risks[index] = SimpleNamespace(probability=p[index])
+    xs, ys = np.array([0.1, 0.2, 0.4]), np.array([0.2, 0.3, 0.4])
+    outcome = RiskOutcome(HazardCurve("pga", [1.0, 2.0], [1e-2, 1e-3]), 50.0,
+                          0.02, 0.95, np.empty(p.shape, dtype=object), risks, ["B", "b_over_h"],
+                          {"B": (xs, {"units": "m"}), "b_over_h": (ys, {})}, name="map")
+    fig = figure_map(outcome)
+    FigureCanvasAgg(fig)  # the figure is saved through savefig: no canvas of its own
+    renderer = _renderer(fig)
+    assert_nothing_clipped(fig, renderer)
+    [legend] = fig.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert any(label.startswith("P = 0.02") for label in labels), labels
+    assert any(label.startswith("P ≤ 0.02") for label in labels), labels
+    ax = fig.axes[0]
+    [mesh] = ax.collections[:1]
+    contour = max(c.get_zorder() for c in ax.collections[1:])
+    texts = [t for t in ax.texts if t.get_text().endswith("%")]
+    assert len(texts) == p.size
+    edges_x, edges_y = np.array([0.05, 0.15, 0.3, 0.5]), np.array([0.15, 0.25, 0.35, 0.45])
+    for t in texts:
+        i, j = (int(np.argmin(np.abs(v - c))) for v, c in zip((xs, ys), t.xy))
+        assert t.get_text() == f"{100 * p[i, j]:.2g} %"
+        assert t.get_zorder() > contour
+        cell = ax.transData.transform([[edges_x[i], edges_y[j]], [edges_x[i + 1],
+                                                                  edges_y[j + 1]]])
+        box = t.get_bbox_patch().get_window_extent(renderer)
+        assert cell[0, 0] <= box.x0 and box.x1 <= cell[1, 0]
+        assert cell[0, 1] <= box.y0 and box.y1 <= cell[1, 1]
+        background = np.array(t.get_bbox_patch().get_facecolor()[:3])
+        assert np.allclose(background, mesh.cmap(mesh.norm(p[i, j]))[:3])
+        assert _contrast(to_rgb(t.get_color()), background) >= 4.5  # WCAG 2.1 level AA
