@@ -1,5 +1,5 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
-any chunk size; abort on an exception; resume of a terminated job with another rank count;
+any chunk size, and of ``sweep.risk``'s report; abort on an exception; resume of a terminated job with another rank count;
 Ctrl-C; a stopped rank detected and named; the launcher/library mismatch message."""
 import os
 import shutil
@@ -145,3 +145,34 @@ def test_a_stopped_rank_is_detected_and_named(tmp_path):
     print(f"stopped rank detected after {detected:.1f} s")
     resumed = cli([study], cwd=tmp_path)  # the parts of both ranks are kept
     assert resumed.returncode == 0 and "resuming" in resumed.stderr, resumed.stderr
+
+
+def test_risk_on_two_ranks_gives_the_numbers_of_one(tmp_path):
+    """``mpiexec -n 2 python -m sweep.risk``: the ranks share the stripes' simulations; the
+    report and the dataset are those of one rank, to the bit."""
+    import json
+
+    import yaml
+
+    risk = {"name": "r", "hazard": {"source": {
+        "vs30": "760 m/s", "levels": {"start": "0.02 g", "stop": "2.5 g", "num": 20},
+        "sources": [{"kind": "point", "distance": "10 km", "depth": "8 km",
+                     "recurrence": {"rate": 0.02, "m_min": 5.5, "m_max": 7.5}}]}},
+        "scene": {"body": {"B": "15 cm", "H": "60 cm"}, "contact": {"mu": 0.8}},
+        "stripes": {"levels": ["3 m/s^2", "6 m/s^2", "10 m/s^2"], "motions": 4},
+        "grid": {"b_over_h": [0.25, 0.3]}, "replicates": 50}
+    reports = {}
+    for ranks in (1, 2):
+        folder = tmp_path / f"ranks{ranks}"
+        folder.mkdir()
+        (folder / "r.yaml").write_text(yaml.safe_dump(risk))
+        args = ("-m", "sweep.risk", "r.yaml", "--json")
+        done = cli(args[2:], cwd=folder, module="sweep.risk") if ranks == 1 else \
+            _mpiexec(PY, *args, cwd=folder)
+        assert done.returncode == 0, done.stderr
+        reports[ranks] = json.loads(done.stdout)
+        reports[ranks].pop("written")
+    assert reports[2] == reports[1]
+    assert reports[1]["bodies"][0]["fragility"]["stripes"]["motions"] == [4, 4, 4]
+    one, two = (_open(tmp_path / f"ranks{n}" / "results" / "r" / "risk.nc") for n in (1, 2))
+    assert two.identical(one)
