@@ -1,6 +1,7 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
-any chunk size, and of ``sweep.risk``'s report; abort on an exception; resume of a terminated job with another rank count;
-Ctrl-C; a stopped rank detected and named; the launcher/library mismatch message."""
+any chunk size, and of ``sweep.risk``'s report; abort on an exception; resume of a
+terminated job with another rank count; Ctrl-C; a stopped rank detected and named; the
+launcher/library mismatch message."""
 import os
 import shutil
 import signal
