@@ -172,14 +172,6 @@ def read_text(path):
         raise FileProblems([Problem("(file)", str(path), f"cannot read: {reason}")], path) from None
 
 
-def read_yaml(path):
-    """Data of a YAML file; raises :class:`FileProblems` for syntax errors or duplicate keys."""
-    data, problems = parse_yaml(read_text(path))
-    if problems:
-        raise FileProblems(problems, path)
-    return data
-
-
 def top_level_problems(data, problems, what, sections):
     """The problem of a file whose content is empty or not a mapping (none if it is one).
 

@@ -3,7 +3,7 @@ import pytest
 import yaml
 
 from sweep.io.problems import MISSING, FileProblems, Problem
-from sweep.io.yamlio import MAX_DEPTH, UniqueKeyLoader, parse_yaml, read_yaml
+from sweep.io.yamlio import MAX_DEPTH, UniqueKeyLoader, parse_yaml
 
 TEXT = """\
 a: 1
@@ -85,13 +85,3 @@ def test_format_one_per_line():
     ]
     assert str(err.with_prefix("scene")).splitlines()[0] == \
         "scene.body.H: must be greater than 0 (got: -0.3)"
-
-
-def test_read_yaml(tmp_path):
-    path = tmp_path / "s.yaml"
-    path.write_text(TEXT)
-    with pytest.raises(FileProblems) as info:
-        read_yaml(path)
-    assert len(info.value.problems) == 3 and info.value.source == str(path)
-    with pytest.raises(FileProblems, match="cannot read"):
-        read_yaml(tmp_path / "missing.yaml")
