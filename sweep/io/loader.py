@@ -1,4 +1,4 @@
-"""The one loader of every input file: scene, study and bodies files.
+"""The one loader of every input file: scene, study, bodies and risk files.
 
 :func:`load_file` reads a YAML file (or takes a dict), refuses what is not a mapping and
 validates one pydantic model, whose validators do every check of the file, the cross-field
