@@ -34,6 +34,8 @@ AXES = {
             "peak ground acceleration the motion is scaled to"),
     "pgv": (("excitation.horizontal.pgv",), "velocity",
             "peak ground velocity the motion is scaled to"),
+    "sa": (("excitation.horizontal.sa.value",), "acceleration",
+           "5 %-damped Sa at the scene's sa.period the motion is scaled to"),
     "seed": (("excitation.horizontal.seed",), "dimensionless",
              "seed of the horizontal motion (synthetic noise, or a sine's or sweep's phase)"),
     "B": (("body.B",), "length", "full breadth of the body"),

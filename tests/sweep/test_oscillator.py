@@ -89,3 +89,21 @@ def test_one_scale_only():
         load_scene({"body": {"B": 0.2, "H": 0.6}, "excitation": {"horizontal": {
             "kind": "record", "name": "elcentro1940_ns", "pga": "0.3 g",
             "sa": {"period": 0.5, "value": "0.5 g"}}}})
+
+
+def test_a_study_axis_sa_scales_each_cell():
+    """Axis ``sa`` (``excitation.horizontal.sa.value``): each cell's applied PGA is its Sa
+    level times PGA/Sa(T) of the record."""
+    import sweep
+    from sweep.runner.cell_checks import load_study
+
+    study = load_study({"name": "s", "output": "unused.nc", "grid": {"sa": ["0.2 g", "0.4 g"]},
+                        "scene": {"body": {"B": 0.2, "H": 0.6}, "solver": {"t_end": 2.0},
+                                  "excitation": {"horizontal": {
+                                      "kind": "record", "name": "elcentro1940_ns",
+                                      "sa": {"period": 0.5, "value": "0.3 g"}}}}})
+    ds = sweep.run_study(study)
+    rec = load_record("elcentro1940_ns")
+    ratio = rec.pga / pseudo_acceleration(rec.samples, rec.dt, 0.5)
+    np.testing.assert_allclose(ds["pga"].values, ds["sa"].values * ratio, rtol=1e-12)
+    np.testing.assert_allclose(ds["sa"].values, [0.2 * 9.80665, 0.4 * 9.80665])
