@@ -291,9 +291,9 @@ def _instead(field, kind, component):
     if field == "amplitude" and kind in ("record", "synthetic"):
         scale = "scale" if component == "horizontal" else "excitation.vertical.scale"
         return (f"scale it with an axis {scale} (a factor on its samples)" +
-                (", pga or pgv (the peak it is scaled to)" if component == "horizontal" else
+                (", pga, pgv or sa (the peak it is scaled to)" if component == "horizontal" else
                  " or scale_with: horizontal"))
-    if field in ("scale", "pga", "pgv") and kind in ("sine", "sweep", "pulse"):
+    if field in ("scale", "pga", "pgv", "sa") and kind in ("sine", "sweep", "pulse"):
         return "vary its amplitude instead (axis amplitude, e.g. {values: [0.1, 0.2], unit: g})"
     if field == "seed" and kind == "record":
         return "an ensemble of records is an axis record (names, paths or {glob: ...})"

@@ -160,13 +160,13 @@ def _problems(scene, grid):
     return [(p.path, p.message) for p in info.value.problems]
 
 
-def test_amplitude_axis_on_a_record_suggests_scale_pga_pgv():
+def test_amplitude_axis_on_a_record_suggests_scale_pga_pgv_sa():
     """One problem at the axis, not one 'unknown key' per value."""
     [(path, message)] = _problems(RECORD_SCENE, {"amplitude": [1, 2, 3]})
     assert path == "grid.amplitude"
     assert message == ("sets excitation.horizontal.amplitude, which a record motion does not "
-                       "have; scale it with an axis scale (a factor on its samples), pga or "
-                       "pgv (the peak it is scaled to)")
+                       "have; scale it with an axis scale (a factor on its samples), pga, "
+                       "pgv or sa (the peak it is scaled to)")
 
 
 @pytest.mark.parametrize("scene, grid, path, words", [
