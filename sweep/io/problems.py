@@ -185,15 +185,16 @@ def validation_problems(error, names, dotted=None, tags=None):
             for problem in _from_error(e, dotted(e["loc"]), names, tags)]
 
 
-def fields_checked(validate, data, names):
+def fields_checked(validate, data, names, dotted=None, tags=None):
     """``(model, errors)``: the model that ``validate`` (``Model.model_validate``, or the
     handler of a ``mode="wrap"`` model validator) makes of ``data``, or None, and a
     :class:`FieldError` for each of its problems, at its dotted path, so that a validator can
-    check on and raise them all with its own (:meth:`FieldError.every`)."""
+    check on and raise them all with its own (:meth:`FieldError.every`); ``dotted``, ``tags``
+    as :func:`validation_problems` takes them."""
     try:
         return validate(data), []
     except ValidationError as err:
-        return None, [FieldError(*p) for p in validation_problems(err, names)]
+        return None, [FieldError(*p) for p in validation_problems(err, names, dotted, tags)]
 
 
 def _joined(loc):

@@ -18,8 +18,10 @@ stripes of motions that give its fragility, the period and the target (docs/risk
     grid: {H: [40 cm, 80 cm], b_over_h: [0.2, 0.3]}     # optional: a risk map
 
 One pydantic model (:class:`RiskFile`), loaded by ``sweep.io.loader.load_file`` as scene,
-study and bodies files are, checks it; every problem is reported at once with its dotted path
-(``hazard.source.sources[0].recurrence.m_max``) and the value given.  What needs the hazard
+study and bodies files are, checks it: its fields, then in one validator the choice of its
+sections (stripes or a known fragility, and what stripes need) and the IM's dimensions; every
+problem is reported at once with its dotted path (``hazard.source.sources[0].recurrence.m_max``)
+and the value given.  What needs the hazard
 itself (a curve file that cannot be read, stripes outside the curve) is checked by the same
 model with a ``hazard`` function of its validation context (``sweep.probability.risk_inputs``
 gives it: the layer above builds curves), which keeps the curve it built.
@@ -34,13 +36,14 @@ from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
 
 from .imt import im_dimension, normalize_im
 from .loader import load_file
-from .problems import MISSING, FieldError, join_path
+from .problems import MISSING, FieldError, fields_checked, join_path
 from .scene_schema import Real, Seed, StrictModel, quantity
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
 MECHANISMS = ("SS", "NS", "RS")
 FORMATS = ("openquake", "usgs", "columns")
 GRID_AXES = ("B", "H", "b_over_h", "mu")  # body axes of a risk map
+SOURCE_KINDS = ("point", "area")
 MAX_LEVELS = 200
 MAX_MOTIONS = 10_000
 
@@ -362,46 +365,21 @@ class RiskFile(StrictModel):
             raise FieldError.several(errors)
         return grid
 
-    @model_validator(mode="after")
-    def _what_gives_the_fragility(self):
-        errors = []
-        if self.stripes is None and self.fragility is None:
-            errors.append(("stripes", MISSING, "required (or a known fragility)"))
-        if self.stripes is not None and self.fragility is not None:
-            errors.append(("fragility", "...", "give either stripes or fragility"))
-        if self.stripes is not None:
-            if self.scene is None:
-                errors.append(("scene", MISSING, "required with stripes: the body simulated"))
-            if self.hazard.file is not None and self.stripes.records is None:
-                if self.stripes.scenario is None:
-                    errors.append((("stripes", "scenario"), MISSING,
-                                   "required with a hazard curve file (no disaggregation)"))
-                if self.stripes.vs30 is None:
-                    errors.append((("stripes", "vs30"), MISSING,
-                                   "required with a hazard curve file"))
-        im = self.im
-        if self.fragility is not None and im is not None and \
-                self.fragility.median.dimension != im_dimension(im):
-            errors.append((("fragility", "median"), str(self.fragility.median),
-                           f"must be an {im_dimension(im)}, as {im}"))
-        if self.stripes is not None and im is not None:
-            levels = self.stripes.levels.values if isinstance(self.stripes.levels, LevelList) \
-                else [self.stripes.levels.start]
-            if any(q.dimension != im_dimension(im) for q in levels):
-                errors.append((("stripes", "levels"), str(levels[0]),
-                               f"must be {im_dimension(im)}s, as {im}"))
-        if errors:
-            raise FieldError.several(errors)
-        return self
-
     @model_validator(mode="wrap")
     @classmethod
-    def _with_its_hazard(cls, data, handler, info):
-        """The file checked by the fields and the rules above, then, with a ``hazard``
-        function in the context (``hazard(checked, base_dir) -> curve``, raising
-        :class:`FieldError` for a curve that cannot be built or stripes outside it), its
-        hazard curve, kept as ``_curve``."""
-        checked = handler(data)
+    def _every_problem(cls, data, handler, info):
+        """The fields' problems, the choice of the sections (from the raw mapping, so that
+        they show with the fields'), the dimensions of the levels against the hazard's IM,
+        raised at once; then, with a ``hazard`` function in the context
+        (``hazard(checked, base_dir) -> curve``, raising :class:`FieldError` for a curve that
+        cannot be built or stripes outside it), the hazard curve, kept as ``_curve``."""
+        checked, errors = fields_checked(handler, data, _FIELD_NAMES, dotted=_dotted,
+                                         tags=SOURCE_KINDS)
+        errors += [FieldError(*e) for e in _section_problems(data)]
+        if checked is not None:
+            errors += [FieldError(*e) for e in _im_problems(checked)]
+        if errors:
+            raise FieldError.every(errors)
         context = info.context or {}
         if context.get("hazard") is not None:
             checked._curve = context["hazard"](checked, context.get("base_dir") or Path("."))
@@ -410,6 +388,55 @@ class RiskFile(StrictModel):
     @property
     def im(self):
         return self.hazard.source.im if self.hazard.source is not None else self.hazard.file.im
+
+
+def _section(raw, key):
+    """The mapping ``raw[key]``, or an empty one (its own problems are the fields')."""
+    value = raw.get(key) if isinstance(raw, dict) else None
+    return value if isinstance(value, dict) else {}
+
+
+def _section_problems(raw):
+    """``(path, value, message)`` of the choice between stripes and a known fragility, and of
+    what stripes need (a scene; with a curve file, a scenario and vs30), from the raw mapping.
+    """
+    given = {key: isinstance(raw, dict) and raw.get(key) is not None
+             for key in ("stripes", "fragility", "scene")}
+    stripes = _section(raw, "stripes")
+    errors = []
+    if not given["stripes"] and not given["fragility"]:
+        errors.append(("stripes", MISSING, "required (or a known fragility)"))
+    if given["stripes"] and given["fragility"]:
+        errors.append(("fragility", "...", "give either stripes or fragility"))
+    if given["stripes"]:
+        if not given["scene"]:
+            errors.append(("scene", MISSING, "required with stripes: the body simulated"))
+        if _section(_section(raw, "hazard"), "file") and stripes.get("records") is None:
+            if stripes.get("scenario") is None:
+                errors.append(("stripes.scenario", MISSING,
+                               "required with a hazard curve file (no disaggregation)"))
+            if stripes.get("vs30") is None:
+                errors.append(("stripes.vs30", MISSING, "required with a hazard curve file"))
+    return errors
+
+
+def _im_problems(checked):
+    """``(path, value, message)`` of a fragility's median or stripe levels not of the
+    dimension of the hazard's IM."""
+    im = checked.im
+    if im is None:  # read from the curve file
+        return []
+    errors = []
+    if checked.fragility is not None and checked.fragility.median.dimension != im_dimension(im):
+        errors.append(("fragility.median", str(checked.fragility.median),
+                       f"must be an {im_dimension(im)}, as {im}"))
+    if checked.stripes is not None:
+        levels = checked.stripes.levels
+        levels = levels.values if isinstance(levels, LevelList) else [levels.start]
+        if any(q.dimension != im_dimension(im) for q in levels):
+            errors.append(("stripes.levels", str(levels[0]),
+                           f"must be {im_dimension(im)}s, as {im}"))
+    return errors
 
 
 _MODELS = (RiskFile, Hazard, CurveFile, SourceHazard, PointSource, AreaSource, Recurrence,
@@ -442,7 +469,7 @@ def _dotted(loc):
     the ``values`` of a list of levels written as a list."""
     path = ""
     for i, key in enumerate(loc):
-        if key in ("point", "area") and i and isinstance(loc[i - 1], int):
+        if key in SOURCE_KINDS and i and isinstance(loc[i - 1], int):
             continue
         if key == "values" and i and loc[i - 1] == "levels":
             continue
@@ -471,7 +498,6 @@ def load_risk(source, *, hazard=None):
         With dotted paths and the values given.
     """
     checked = load_file(source, RiskFile, "risk file", "hazard, scene, stripes, years",
-                        _FIELD_NAMES, context={"hazard": hazard}, dotted=_dotted,
-                        tags=("point", "area"))
+                        _FIELD_NAMES, context={"hazard": hazard})
     return RiskSpec(checked, None if isinstance(source, dict) else Path(source),
                     checked._curve)

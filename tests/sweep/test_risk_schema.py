@@ -64,3 +64,18 @@ def test_top_level_and_yaml_problems_as_other_files(tmp_path, text, message):
     path = tmp_path / "r.yaml"
     path.write_text(text)
     assert any(m.startswith(message) for _, m in _problems(path))
+
+
+def test_the_choice_of_sections_shows_with_the_fields_problems():
+    raw = {"hazard": {"file": {"path": "c.csv", "format": "columns"}}, "years": 0,
+           "stripes": {"levels": ["2 m/s^2", "4 m/s^2"]}}
+    assert _problems(raw) == [
+        ("hazard.file.im", "required for a two-column file"),
+        ("hazard.file.units", "required for a two-column file"),
+        ("years", "must be greater than 0"),
+        ("scene", "required with stripes: the body simulated"),
+        ("stripes.scenario", "required with a hazard curve file (no disaggregation)"),
+        ("stripes.vs30", "required with a hazard curve file")]
+    assert _problems({"hazard": {"source": SOURCE}, "replicates": -1}) == [
+        ("replicates", "must be greater than or equal to 0"),
+        ("stripes", "required (or a known fragility)")]
