@@ -22,6 +22,7 @@ from pathlib import Path
 from .cli import argument_parser, checked_type, command, print_json
 from .io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
 from .io.files import output_problems, write_csv
+from .io.imt import display_scale
 from .io.problems import FileProblems, Problem
 
 _positive = checked_type(float, lambda v: v > 0, "a positive number")
@@ -232,7 +233,7 @@ def print_report(outcome):
     import numpy as np
 
     curve = outcome.curve
-    factor, unit = (9.80665, "g") if curve.units == "m s-2" else (0.01, "cm/s")
+    factor, unit = display_scale(curve.units)
     print(f"hazard: {curve.source}")
     for index in np.ndindex(*outcome.shape):
         r, f = outcome.risks[index], outcome.fits[index]

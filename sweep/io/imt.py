@@ -2,6 +2,8 @@
 dimension, and the names OpenQuake (``PGA``, ``SA(0.3)``) and the USGS (``SA0P3``) write."""
 import re
 
+from ..bodies import G
+
 IM_PATTERN = re.compile(r"^(pga|pgv|sa\((\d+(?:\.\d*)?|\.\d+)\))$")
 SI_UNITS = {"acceleration": "m s-2", "velocity": "m s-1"}
 
@@ -9,6 +11,12 @@ SI_UNITS = {"acceleration": "m s-2", "velocity": "m s-1"}
 def im_dimension(im):
     """``"acceleration"`` for pga and sa(T), ``"velocity"`` for pgv."""
     return "velocity" if im == "pgv" else "acceleration"
+
+
+def display_scale(units):
+    """(factor, label) that show an IM of CF ``units`` in g (accelerations) or cm/s
+    (velocities): the value shown is the SI value / factor."""
+    return (G, "g") if units == SI_UNITS["acceleration"] else (0.01, "cm/s")
 
 
 def normalize_im(text):

@@ -5,6 +5,7 @@ interval; over a grid of bodies the risk map with the contour of the target prob
 import numpy as np
 from matplotlib.colors import LogNorm
 
+from ..io.imt import display_scale
 from ..probability import risk as risk_integral
 from .style import fit_suptitle, log_axes, save_figure
 
@@ -23,17 +24,12 @@ def relative_luminance(colour):
     return float(linear @ [0.2126, 0.7152, 0.0722])
 
 
-def _scale(units):
-    """(factor, label) to show an IM in g (accelerations) or cm/s (velocities)."""
-    return (9.80665, "g") if units == "m s-2" else (0.01, "cm/s")
-
-
 def figure_body(outcome, index=()):
     """Four panels for one body (``index`` into the body shape)."""
     from matplotlib.figure import Figure
 
     curve, r, f = outcome.curve, outcome.risks[index], outcome.fits[index]
-    factor, unit = _scale(curve.units)
+    factor, unit = display_scale(curve.units)
     fig = Figure(figsize=(10, 7.5), layout="constrained")
     (ax_h, ax_f), (ax_i, ax_p) = fig.subplots(2, 2)
     x = np.geomspace(curve.levels[0], curve.levels[-1], 400)

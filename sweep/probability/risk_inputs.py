@@ -6,11 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ..bodies import G
 from ..io.problems import FieldError
 from . import hazard_curve as hc
 from . import source_hazard as sh
 
-DEFAULT_LEVELS = {"acceleration": (0.005 * 9.80665, 3.0 * 9.80665),  # m/s²
+DEFAULT_LEVELS = {"acceleration": (0.005 * G, 3.0 * G),  # m/s²
                   "velocity": (0.005, 3.0)}  # m/s
 DEFAULT_LEVEL_COUNT = 40
 DEFAULT_DISTANCE_BINS = (0.0, 10e3, 20e3, 30e3, 50e3, 75e3, 100e3, 150e3, 200e3, 300e3)
