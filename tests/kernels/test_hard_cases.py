@@ -177,9 +177,9 @@ ONSET_EDGE = dict(B=0.2, H=0.6, mu_s=0.4, mu_k=0.3, mu_edge_s=0.25, mu_edge_k=0.
 def test_onset_with_edge_below_mu_required_slides():
     """A > b/h with mu_s >= mu_req(A) > mu_edge_s and mu_edge_k < b/h: rest cannot hold (the
     trailing corner would pull), the pivot cannot stick as a lone corner nor lift the other
-    by slipping, so the face slides backwards though A < mu_s (transitions.leave_rest).
-    Once a cycle rest -> rotation -> slip -> impact at omega = 0 without time (1,000,000
-    events at t = 0.0375 s).  The body is then Newmark's block of static friction b/h and
+    by slipping, so the face slides backwards though A < mu_s (transitions.leave_rest); a
+    rotation started there would slip at once and fall back onto the face at the same instant,
+    a cycle without time.  The body is then Newmark's block of static friction b/h and
     kinetic mu_k: rest until a_x = (b/h) g, at asin((b/h)/0.6)/(2 pi 2.5 Hz), then x(t) as
     the scipy stick-slip program's."""
     r = run_scene(scene(**ONSET_EDGE), history=True)
