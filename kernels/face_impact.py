@@ -4,8 +4,9 @@ rocking impact of the other corner (PHYSICS.md 2.1-2.3, docs/landing.md).
 Both corners get Newton's normal target -e_y V_n- (0 for a corner not approaching); the
 total tangential impulse acts at the height -h below G.  The two-contact solution is taken
 when both normal impulses are >= 0 (a flat landing, or a squat block whose old pivot cannot
-lift); otherwise only the corner striking harder takes the impulse with the edge friction
-(Housner's case, ``corner_impact``), and if that drives the other corner into the floor,
+lift); otherwise only the corner striking harder (on a flat landing, where both strike
+alike, the leading one) takes the impulse with the edge friction (Housner's case,
+``corner_impact``), and if that drives the other corner into the floor,
 that one is struck in turn: a sequence of single-corner impacts, each dissipative.  A
 landing after a translation jump takes the scene's law (``landing_impact``): this
 two-contact impulse (flat), one contact at the middle of the base (face_friction), or the
@@ -24,17 +25,6 @@ SEQUENTIAL_IMPACTS = 50  # at most this many alternating corner impacts in one f
 
 
 @jit
-def _solve3(M, r):
-    """Solve the 3x3 system M x = r by Cramer's rule (M given as a 9-tuple, row major)."""
-    a, b_, c, d, e, f, g, h, k = M
-    det = a * (e * k - f * h) - b_ * (d * k - f * g) + c * (d * h - e * g)
-    x0 = (r[0] * (e * k - f * h) - b_ * (r[1] * k - f * r[2]) + c * (r[1] * h - e * r[2])) / det
-    x1 = (a * (r[1] * k - f * r[2]) - r[0] * (d * k - f * g) + c * (d * r[2] - r[1] * g)) / det
-    x2 = (a * (e * r[2] - r[1] * h) - b_ * (d * r[2] - r[1] * g) + r[0] * (d * h - e * g)) / det
-    return x0, x1, x2
-
-
-@jit
 def face_impulses(q, body, contact):
     """Two-contact impulses (P_L, P_R, P_t, flags) with the face flat (PHYSICS 2.3,
     generalised to omega != 0 as the velocity-level two-contact problem), with the surface
@@ -42,8 +32,11 @@ def face_impulses(q, body, contact):
     friction cone |P_t| <= mu_s (P_L + P_R), beyond which it slips with mu_k.
 
     The corners lie at (-b1, -h) and (b2, -h) from G: an impulse (P_L, P_R, P_t) changes
-    V_L, V_R and the base's V_x by the matrix of ``Mfull`` (k_ij = b_i b_j / i^2,
-    k_i = b_i h / i^2, k_3 = h^2 / i^2; docs/bodies.md)."""
+    V_L, V_R and the base's V_x by the symmetric matrix
+    [[a, d, -k_1], [d, c, k_2], [-k_1, k_2, 1 + k_3]] with a = 1 + k_11, c = 1 + k_22,
+    d = 1 - k_12 (k_ij = b_i b_j / i^2, k_i = b_i h / i^2, k_3 = h^2 / i^2; docs/bodies.md).
+    P_t is its third unknown by cofactors, written so that the mirror image of a state
+    (b1 <-> b2, u, omega -> -u, -omega) gives the mirrored impulses bit for bit."""
     b1, b2, h, i2 = body.b1, body.b2, body.h, body.i2
     e_x, e_y, mu_s = contact.e_x, contact.e_y, contact.mu_s
     u, v, omega = q[IU], q[IV], q[IOMEGA]
@@ -52,22 +45,19 @@ def face_impulses(q, body, contact):
     Vx = u + omega * h
     dL = -VL - e_y * min(VL, 0.0)
     dR = -VR - e_y * min(VR, 0.0)
-    k11 = b1 * b1 / i2
-    k22 = b2 * b2 / i2
-    k12 = b1 * b2 / i2
     k1 = b1 * h / i2
     k2 = b2 * h / i2
-    k3 = h * h / i2
-    Mfull = (1.0 + k11, 1.0 - k12, -k1,
-             1.0 - k12, 1.0 + k22, k2,
-             -k1, k2, 1.0 + k3)
-    Pt = (1.0 + e_x) * _solve3(Mfull, (dL, dR, -Vx))[2]
+    a = 1.0 + b1 * b1 / i2
+    c = 1.0 + b2 * b2 / i2
+    d = 1.0 - b1 * b2 / i2
+    det = a * c - d * d                    # the normal block's determinant
+    det3 = (1.0 + h * h / i2) * det - (a * k2 * k2 + c * k1 * k1) - 2.0 * d * (k1 * k2)
+    Pt = (1.0 + e_x) * ((c * k1 + d * k2) * dL - (a * k2 + d * k1) * dR - det * Vx) / det3
     # normals with the tangential impulse fixed
-    det = (1.0 + k11) * (1.0 + k22) - (1.0 - k12) ** 2
     rL = dL + k1 * Pt
     rR = dR - k2 * Pt
-    PL = ((1.0 + k22) * rL - (1.0 - k12) * rR) / det
-    PR = ((1.0 + k11) * rR - (1.0 - k12) * rL) / det
+    PL = (c * rL - d * rR) / det
+    PR = (a * rR - d * rL) / det
     if omega != 0.0 and min(PL, PR) < -IMPULSE_ROUNDOFF * (abs(PL) + abs(PR)):
         # a rocking impact whose sticking two-contact solution pulls a corner down: the old
         # pivot lifts (Housner's case); a flat landing goes on to the friction cap (2.3)
@@ -75,17 +65,17 @@ def face_impulses(q, body, contact):
     if abs(Pt) <= mu_s * (PL + PR):
         return PL, PR, Pt, 0
     sigma = math.copysign(1.0, Vx) if abs(Vx) > V_ZERO else -math.copysign(1.0, Pt)
-    c = -sigma * sliding_friction(sigma, body, contact)   # P_t = c (P_L + P_R)
-    a11 = 1.0 + k11 - k1 * c
-    a12 = 1.0 - k12 - k1 * c
-    a21 = 1.0 - k12 + k2 * c
-    a22 = 1.0 + k22 + k2 * c
+    f = -sigma * sliding_friction(sigma, body, contact)   # P_t = f (P_L + P_R)
+    a11 = a - k1 * f
+    a12 = d - k1 * f
+    a21 = d + k2 * f
+    a22 = c + k2 * f
     det = a11 * a22 - a12 * a21
     if det == 0.0:
         return 0.0, 0.0, 0.0, IMPACT_PAINLEVE
     PL = (a22 * dL - a12 * dR) / det
     PR = (a11 * dR - a21 * dL) / det
-    return PL, PR, c * (PL + PR), SLIPPED
+    return PL, PR, f * (PL + PR), SLIPPED
 
 
 @jit
@@ -106,8 +96,21 @@ def face_impact(q, body, contact):
             return flags
         restore_velocities(q, u, v, omega)
     # Only the corner striking harder takes the impulse, then the other in turn.
-    return corner_sequence(q, -1.0 if v - omega * body.b1 < v + omega * body.b2 else 1.0,
-                           body, contact)
+    return corner_sequence(q, striking_corner(q, body), body, contact)
+
+
+@jit
+def striking_corner(q, body):
+    """The corner moving faster into the floor with the face flat (-1 left, +1 right).  On
+    a tie, omega = 0 (a landing), the leading corner, on the side u points to: the friction
+    impulse against u loads it and unloads the trailing one, whose normal impulse is the
+    one that turns negative (PHYSICS 2.3, docs/landing.md).  With u = 0 too the two-contact
+    impulse has P_t = 0 and both normal impulses > 0, so no single corner is asked for."""
+    VL = corner_velocity(q, -1.0, body)[1]
+    VR = corner_velocity(q, 1.0, body)[1]
+    if VL == VR:
+        return math.copysign(1.0, q[IU])
+    return -1.0 if VL < VR else 1.0
 
 
 @jit
@@ -150,8 +153,7 @@ def landing_impact(q, body, contact):
         # s = 0: the point below G; W_nn = 1 there, so never a Painleve case
         mu_k = sliding_friction(math.copysign(1.0, q[IU]), body, contact)
         flags = point_impact(q, 0.0, contact.mu_s, mu_k, body, contact)
-        s = -1.0 if corner_velocity(q, -1.0, body)[1] < corner_velocity(q, 1.0, body)[1] \
-            else 1.0
+        s = striking_corner(q, body)
         if approaches(q, s, body):
             flags |= corner_sequence(q, s, body, contact)
         return flags

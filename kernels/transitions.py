@@ -53,7 +53,16 @@ def mu_required(A, b, h, i2):
 @jit
 def leave_rest(a_x, g_e, body, contact):
     """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b_s/h, tan alpha of the
-    corner s the floor drives the body towards (docs/bodies.md)."""
+    corner s the floor drives the body towards (docs/bodies.md).
+
+    Beyond A > beta rest has no consistent contact force (the other corner's normal force
+    would be negative, PHYSICS 1.2 (1)).  Rocking needs the pivot to stick both as the
+    face's edge at onset (mu_s, as the table) and as the lone corner once the other lifts
+    (mu_edge_s, rotation's own slip test); slide rotation needs mu_edge_k > beta to lift the
+    other corner.  Failing both, the face slides backwards, even with A <= mu_s: the
+    rotation would slip at once and slide back onto the face, a cycle without time
+    (docs/conventions.md).
+    """
     h, i2 = body.h, body.i2
     mu_s = contact.mu_s
     if g_e <= 0.0:
@@ -63,16 +72,15 @@ def leave_rest(a_x, g_e, body, contact):
     s = -drive                         # a_x > 0 tips the body about its left corner
     b = half_base(s, body)
     beta = b / h
-    if A <= mu_s and A <= beta:
-        return REST, 0.0, 0.0
-    if A > beta:
-        if mu_s >= mu_required(A, b, h, i2):
-            return ROTATION, s, 0.0
-        if contact.mu_edge_k > beta:   # the pivot slips backwards relative to the floor
-            return SLIDE_ROTATION, s, -drive
-    if A > mu_s:
+    if A <= beta:
+        if A <= mu_s:
+            return REST, 0.0, 0.0
         return start_slide(-drive, body, contact)
-    return REST, 0.0, 0.0
+    if min(mu_s, contact.mu_edge_s) >= mu_required(A, b, h, i2):
+        return ROTATION, s, 0.0
+    if contact.mu_edge_k > beta:       # the pivot slips backwards relative to the floor
+        return SLIDE_ROTATION, s, -drive
+    return start_slide(-drive, body, contact)
 
 
 @jit

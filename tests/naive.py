@@ -215,16 +215,18 @@ def zeno_time(B, H, theta0):
     return t + 2.0 * _quarter_time(amp, alpha, p) * eta / (1.0 - eta)
 
 
-def rigid_plastic_slide(a_x, mu, t_end, breaks=(), rtol=1e-12, atol=1e-14):
+def rigid_plastic_slide(a_x, mu, t_end, breaks=(), rtol=1e-12, atol=1e-14, mu_stick=None):
     """Newmark's rigid-plastic sliding block on a horizontal floor (PHYSICS 1.2 (2), A6).
 
-    Static = kinetic friction mu and no rocking (mu < b/h).  Stick -> slip when
-    |a_x| > mu g; slip -> stick when u = 0 and |a_x| <= mu g, else the slip reverses.
-    ``breaks`` are the instants where a_x jumps (integration never crosses them).
+    Kinetic friction mu, static mu_stick (default mu), no rocking.  Stick -> slip when
+    |a_x| > mu_stick g; slip -> stick when u = 0 and |a_x| <= mu_stick g, else the slip
+    reverses.  ``breaks`` are the instants where a_x jumps (integration never crosses them).
     Returns (t, x) on a dense grid and max |x|: relative displacement of the block.
     """
+    mu_stick = mu if mu_stick is None else mu_stick
+
     def excess(t):
-        return abs(a_x(t)) - mu * G
+        return abs(a_x(t)) - mu_stick * G
 
     stops = sorted(set([bk for bk in breaks if 0.0 < bk < t_end] + [t_end]))
     scan = np.unique(np.concatenate([np.arange(0.0, t_end, 1e-3), stops]))
@@ -233,7 +235,7 @@ def rigid_plastic_slide(a_x, mu, t_end, breaks=(), rtol=1e-12, atol=1e-14):
     sliding = False
     sigma = 0.0
     while t < t_end:
-        if not sliding:                      # stuck: find the next instant |a_x| > mu g
+        if not sliding:                      # stuck: find the next instant |a_x| > mu_stick g
             if excess(t) <= 0.0:
                 t_next = None
                 ta = t

@@ -168,6 +168,34 @@ def test_free_rocking_friction_between_impact_bound_and_b_over_h():
         0.1, 0.3, 0.5 * c.alpha, 50), atol=1e-7)
 
 
+# --- onset from rest with an edge weaker than the face -------------------------------------
+
+ONSET_EDGE = dict(B=0.2, H=0.6, mu_s=0.4, mu_k=0.3, mu_edge_s=0.25, mu_edge_k=0.2, e_x=-0.5,
+                  e_y=0.3, horizontal=sine(0.6 * G, 2.5), t_end=10.0, dt_out=0.005)
+
+
+def test_onset_with_edge_below_mu_required_slides():
+    """A > b/h with mu_s >= mu_req(A) > mu_edge_s and mu_edge_k < b/h: rest cannot hold (the
+    trailing corner would pull), the pivot cannot stick as a lone corner nor lift the other
+    by slipping, so the face slides backwards though A < mu_s (transitions.leave_rest); a
+    rotation started there would slip at once and fall back onto the face at the same instant,
+    a cycle without time.  The body is then Newmark's block of static friction b/h and
+    kinetic mu_k: rest until a_x = (b/h) g, at asin((b/h)/0.6)/(2 pi 2.5 Hz), then x(t) as
+    the scipy stick-slip program's."""
+    r = run_scene(scene(**ONSET_EDGE), history=True)
+    assert r.status == "ok" and r.events < 1000 and r.impact_count == 0
+    assert r.max_abs_theta == 0.0
+    beta = 1.0 / 3.0
+    t0 = math.asin(beta / 0.6) / (2.0 * math.pi * 2.5)
+    assert r.mode_time["rest"] == pytest.approx(t0, abs=1e-9)
+    assert r.mode_time["slide"] == pytest.approx(10.0 - t0, abs=1e-9)
+    t, x, x_max = naive.rigid_plastic_slide(lambda t: 0.6 * G * math.sin(5.0 * math.pi * t),
+                                            0.3, 10.0, mu_stick=beta)
+    np.testing.assert_allclose(r.history["x"], np.interp(r.history["t"], t, x), rtol=0,
+                               atol=1e-7)
+    assert r.max_slip == pytest.approx(x_max, rel=1e-8)
+
+
 # --- Painleve (PHYSICS 3.2) ------------------------------------------------------------------
 
 @pytest.mark.parametrize("mu_edge, status", [(2.0, "painleve"), (1.3, "ok")])

@@ -366,29 +366,31 @@ def test_face_impact_no_penetration_random():
 
 # --- flat landing, PHYSICS 2.3 -------------------------------------------------------------
 
-def _landing(k, lift=1e-6, t_after=0.02, mu=0.6, B=0.1, H=0.3):
-    """A block dropped flat so that it lands with (u, v) = (1, -k) m/s at t_land, under the
+def _landing(k, lift=1e-6, t_after=0.02, mu=0.6, B=0.1, H=0.3, u=1.0):
+    """A block dropped flat so that it lands with (u, v) = (u, -k) m/s at t_land, under the
     flat landing law."""
     y_dot = -math.sqrt(k * k - 2 * G * lift)
     t_land = (y_dot + k) / G
     return scene(B, H, mu=mu, landing="flat",
-                 initial={"lift": lift, "x_dot": 1.0, "y_dot": y_dot},
+                 initial={"lift": lift, "x_dot": u, "y_dot": y_dot},
                  t_end=t_land + t_after, **TIGHT), t_land
 
 
-def test_flat_landing_anchor():
-    """Landing at (1, -1) m/s, mu = 0.6, e = 0: omega+ = -3.0000 rad/s and the block rocks."""
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_flat_landing_anchor(side):
+    """Landing at (side, -1) m/s, mu = 0.6, e = 0: omega+ = -3.0000 side rad/s and the block
+    rocks about its leading corner, the right one moving right, the left one moving left."""
     c = const(0.1, 0.3)
-    sc, t_land = _landing(1.0)
+    sc, t_land = _landing(1.0, u=side)
     r = run_scene(sc)
     assert r.status == "ok"
     assert r.impact_times[0] == pytest.approx(t_land, abs=1e-9)
-    assert r.omega_after[0] == pytest.approx(-3.0, abs=1e-6)
-    # the same from the single-corner sticking impulse at the leading (right) corner
-    u, v, w, slipped = _corner_law(np.array([0, c.h, 0, 1.0, -1.0, 0.0]), 1.0, 0.0, 0.0, 0.6,
-                                   0.6, c.b, c.h, c.i2)
-    assert not slipped and w == pytest.approx(-3.0, abs=1e-12)
-    assert v - w * c.b == pytest.approx(0.3, abs=1e-12)        # trailing corner rises
+    assert r.omega_after[0] == pytest.approx(-3.0 * side, abs=1e-6)
+    # the same from the single-corner sticking impulse at the leading corner
+    u, v, w, slipped = _corner_law(np.array([0, c.h, 0, side, -1.0, 0.0]), side, 0.0, 0.0,
+                                   0.6, 0.6, c.b, c.h, c.i2)
+    assert not slipped and w == pytest.approx(-3.0 * side, abs=1e-12)
+    assert v - side * w * c.b == pytest.approx(0.3, abs=1e-12)     # trailing corner rises
     assert r.mode_time["rotation"] > 0 and r.mode_time["slide_rotation"] == 0.0
     assert r.mode_time["slide"] == 0.0 and not r.impact_slipped[0]
 

@@ -10,12 +10,12 @@ import pytest
 import yaml
 
 from kernels.api import DEFAULTS, run_scene
-from kernels.codes import (IMPACT_PAINLEVE, LANDING_CORNER, LANDING_FACE_FRICTION,
-                           LANDING_NAMES, SLIPPED)
+from kernels.codes import (HISTORY_NAMES, IMPACT_PAINLEVE, LANDING_CORNER,
+                           LANDING_FACE_FRICTION, LANDING_NAMES, SLIPPED)
 from kernels.corner_impact import corner_impact
 from kernels.face_impact import landing_impact
 from kernels.state import Body, Contact
-from scenes import G, const, scene
+from scenes import G, const, scene, sine
 from sweep import simulate
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
@@ -248,3 +248,39 @@ def test_fig5_panels_with_the_default_contact():
         assert default.omega_after == face.omega_after
         got[p] = _outcome(default)
     assert got == PAPER
+
+
+# --- mirror ---------------------------------------------------------------------------------
+
+def _thrown(sign, landing, x_dot, x_g, excited):
+    """B 20 x H 60 cm lifted 5 cm, thrown at sign x_dot, G at (sign x_g, 30 cm), on a still
+    floor or a sine of sign 0.3 g at 2 Hz: the scene (sign 1) and its mirror image (-1)."""
+    sc = scene(0.2, 0.6, mu=0.6, e_x=-0.3, e_y=0.1, landing=landing,
+               horizontal=sine(sign * 0.3 * G, 2.0) if excited else None,
+               initial={"lift": 0.05, "x_dot": sign * x_dot}, t_end=2.0, dt_out=0.005)
+    sc["body"]["G"] = [sign * x_g, 0.3]
+    return sc
+
+
+@pytest.mark.parametrize("landing", LANDING_NAMES)
+@pytest.mark.parametrize("x_dot", [0.3, 0.8, 1.5])
+@pytest.mark.parametrize("x_g, excited", [(0.0, False), (0.0, True), (0.03, False)],
+                         ids=["still", "sine", "G_off_middle"])
+def test_mirrored_landing_mirrors_every_result(landing, x_dot, x_g, excited):
+    """x_dot, x_G and a_x -> their negatives: theta, omega, x, u and the overturning
+    direction change sign, all else is the same, under every law.  A flat landing whose
+    two-contact impulse would pull the trailing corner is taken by the leading one (PHYSICS
+    2.3), not by the right one whatever the direction.  Bit for bit here; asserted to 1e-12."""
+    r = run_scene(_thrown(1.0, landing, x_dot, x_g, excited), history=True)
+    m = run_scene(_thrown(-1.0, landing, x_dot, x_g, excited), history=True)
+    assert r.impact_count > 0 and r.max_abs_theta > 0.0
+    assert m.status == r.status and m.impact_count == r.impact_count
+    assert m.overturn_direction == (-r.overturn_direction if r.overturned else None)
+    np.testing.assert_allclose(m.impact_times, r.impact_times, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(m.omega_after, -np.array(r.omega_after), rtol=0, atol=1e-12)
+    for key in ("max_abs_theta", "max_slip", "max_lift", "max_travel", "t_final"):
+        assert getattr(m, key) == pytest.approx(getattr(r, key), rel=0, abs=1e-12), key
+    sign = {"theta": -1, "omega": -1, "x": -1, "u": -1, "a_x": -1}
+    for name in HISTORY_NAMES:
+        np.testing.assert_allclose(m.history[name], sign.get(name, 1) * r.history[name],
+                                   rtol=0, atol=1e-12, err_msg=name)
