@@ -90,6 +90,16 @@ def join_path(path, key):
     return f"{path}.{key}" if path else str(key)
 
 
+def dotted_path(loc, tagged):
+    """The dotted path of a pydantic location, leaving out the keys at the places ``i`` where
+    ``tagged(loc, i)`` holds: the tags pydantic inserts for the member of a union."""
+    path = ""
+    for i, key in enumerate(loc):
+        if not tagged(loc, i):
+            path = join_path(path, key)
+    return path
+
+
 def closest(name, names):
     """The entry of ``names`` closest to ``name`` (for "did you mean"), or None."""
     close = difflib.get_close_matches(str(name), list(names), n=1)

@@ -36,7 +36,7 @@ from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
 
 from .imt import im_dimension, normalize_im
 from .loader import load_file
-from .problems import MISSING, FieldError, fields_checked, join_path
+from .problems import MISSING, FieldError, dotted_path, fields_checked
 from .scene_schema import Real, Seed, StrictModel, quantity
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
@@ -464,17 +464,19 @@ class RiskSpec:
         return "risk" if self.source is None else self.source.stem
 
 
+def _union_tag(loc, i):
+    """The tag of a source's kind (``sources[0].point``) or the ``values`` of levels written
+    as a list."""
+    if not i:
+        return False
+    key = loc[i]
+    return (key in SOURCE_KINDS and isinstance(loc[i - 1], int)) or \
+        (key == "values" and loc[i - 1] == "levels")
+
+
 def _dotted(loc):
-    """The dotted path of a pydantic location, without union tags (``sources[0].point``) and
-    the ``values`` of a list of levels written as a list."""
-    path = ""
-    for i, key in enumerate(loc):
-        if key in SOURCE_KINDS and i and isinstance(loc[i - 1], int):
-            continue
-        if key == "values" and i and loc[i - 1] == "levels":
-            continue
-        path = join_path(path, key)
-    return path
+    """The dotted path of a pydantic location, without union tags."""
+    return dotted_path(loc, _union_tag)
 
 
 def load_risk(source, *, hazard=None):

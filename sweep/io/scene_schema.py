@@ -27,7 +27,7 @@ from ..groundmotion.oscillator import pseudo_acceleration
 from . import floors, records, units
 from .units import Quantity
 from .loader import load_file
-from .problems import MISSING, FieldError, FileProblems, Problem, join_path
+from .problems import MISSING, FieldError, FileProblems, Problem, dotted_path
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
@@ -602,17 +602,18 @@ _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, 
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
+def _union_tag(loc, i):
+    """The tag pydantic inserts after a ground component (``excitation.horizontal.sine``) or
+    a building's ``modes``."""
+    if i >= 2 and loc[i - 1] in ("horizontal", "vertical", "ground") and loc[i] in KINDS:
+        return True
+    return loc[i - 1:i] == ("modes",) and loc[i] in ("count", "list")
+
+
 def _dotted(loc):
-    """Dotted path of a pydantic location, without the union tag pydantic inserts after a
-    ground component (``excitation.horizontal.sine.amplitude`` -> ``...horizontal.amplitude``)."""
-    path = ""
-    for i, key in enumerate(loc):
-        if i >= 2 and loc[i - 1] in ("horizontal", "vertical", "ground") and key in KINDS:
-            continue
-        if loc[i - 1:i] == ("modes",) and key in ("count", "list"):  # a building's modes
-            continue
-        path = join_path(path, key)
-    return path
+    """Dotted path of a pydantic location, without union tags
+    (``excitation.horizontal.sine.amplitude`` -> ``...horizontal.amplitude``)."""
+    return dotted_path(loc, _union_tag)
 
 
 def load_scene(source, *, base_dir=None):
