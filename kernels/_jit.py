@@ -121,7 +121,7 @@ class _Announcer(event.Listener):
         pass
 
 
-def _rank():
+def launcher_rank():
     """This process's MPI rank as the launcher tells it (0 when not under MPI)."""
     for name in _RANK_VARIABLES:
         if os.environ.get(name, "").isdigit():
@@ -129,5 +129,5 @@ def _rank():
     return 0
 
 
-if not DISABLED and _rank() == 0:
+if not DISABLED and launcher_rank() == 0:
     event.register("numba:compile", _Announcer())

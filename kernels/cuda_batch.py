@@ -11,10 +11,13 @@ is no wall-time budget on the device, only the scene's step and event budgets.
 Imported only for ``--backend cuda``: it needs numba-cuda (``pip install .[cuda]``) and, to
 run, a GPU or the CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``).
 """
+import functools
+
 import numpy as np
 from numba import cuda
 
 from . import api, codes
+from ._jit import launcher_rank
 from .driver import run_scene
 from .state import WORK_DTYPE
 from .watchdog import control
@@ -41,11 +44,18 @@ def available():
     return "no CUDA GPU is visible (numba.cuda.is_available() is False)"
 
 
+@functools.cache
+def _select_device():
+    """One GPU per MPI rank where a node has several (rank modulo their number)."""
+    cuda.select_device(launcher_rank() % len(cuda.gpus))
+
+
 def run_cells(rows, rec, batch=BATCH):
     """``kernels.api.run_cells`` on the GPU: n scene rows to n result records.
 
     The record buffer ``rec`` goes to device memory once; rows go in launches of ``batch``.
     """
+    _select_device()
     rows = np.ascontiguousarray(api.as_records(rows).view(np.ndarray))
     results = np.zeros(rows.shape[0], codes.RESULT_DTYPE)
     d_rec = cuda.to_device(np.ascontiguousarray(rec, dtype=np.float64))
