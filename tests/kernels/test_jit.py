@@ -92,4 +92,5 @@ def test_only_rank_0_says_it(tmp_path):
 def test_contraction_compiles_into_a_folder_of_its_own(tmp_path):
     code = ("import kernels._jit as j; print(j.CACHE_DIR, j._OPTIONS['fastmath'] == {'contract'})")
     out = _python(code, _env(tmp_path, KERNEL_CONTRACT="1"), cwd=KERNELS.parent).stdout.split()
-    assert out == [f"{_jit.CACHE_DIR}-contract", "True"]
+    folder = tmp_path / "rigid-block-sweeps" / f"numba-{_jit.SOURCE_DIGEST[:16]}-contract"
+    assert out == [str(folder), "True"]
