@@ -5,7 +5,8 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: install run scenes test test-nojit validate bench figures rate-study clean
+.PHONY: install run scenes test test-nojit test-cudasim validate bench bench-gpu figures \
+  rate-study clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
@@ -35,11 +36,22 @@ test: install
 test-nojit: $(STAMP)
 	NUMBA_DISABLE_JIT=1 $(PY) -m pytest -m "not slow and not mpi" -q tests/kernels/test_impact.py
 
+# The CUDA kernel without a GPU (docs/gpu.md): installs the cuda extra into the venv
+test-cudasim: install
+	$(PY) -m pip install --quiet -e '.[cuda]'
+	$(PY) -m pytest -m "slow or not slow" -q tests/kernels/test_cuda_batch.py
+
 validate: install
 	$(PY) -m pytest -m slow -q
 
 bench: install
 	$(PY) -m benchmarks
+
+# On a machine with an NVIDIA GPU: the GPU against every CPU core, and scaling by rank count
+bench-gpu: install
+	$(PY) -m pip install --quiet -e '.[cuda]'
+	$(PY) -m benchmarks.gpu
+	$(PY) -m benchmarks.scaling
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
 # 17 (closed forms), 18-21 (records), the rocking spectrum and fragility figures (one MPI job

@@ -30,6 +30,12 @@ source, ``CACHE_DIR`` = ``$XDG_CACHE_HOME`` (or ``~/.cache``)
 ``/rigid-block-sweeps/numba-<digest>``, for every command of this user; ``NUMBA_CACHE_DIR``,
 when set, is used as it is.  The first compile says so on stderr, once (rank 0 only under
 MPI).
+
+Contraction.  ``KERNEL_CONTRACT=1`` compiles the kernel with LLVM's ``contract`` flag alone,
+which fuses a*b + c into one rounding (an FMA) as GPU compilers do by default, into a cache
+folder of its own (``-contract``).  It is not for results: ``benchmarks/gpu.py`` measures with
+it how far results move when only the rounding of the arithmetic changes, the yardstick for
+the GPU's results (docs/gpu.md).
 """
 import hashlib
 import os
@@ -54,7 +60,10 @@ def _default_cache_dir(digest):
 
 
 SOURCE_DIGEST = source_digest()
+CONTRACT = os.environ.get("KERNEL_CONTRACT") == "1"
 CACHE_DIR = os.environ.get("NUMBA_CACHE_DIR") or _default_cache_dir(SOURCE_DIGEST)
+if CONTRACT and not CACHE_DIR.endswith("-contract"):
+    CACHE_DIR += "-contract"
 os.environ["NUMBA_CACHE_DIR"] = CACHE_DIR  # read by numba at import, inherited by children
 
 import numba  # noqa: E402  (after NUMBA_CACHE_DIR is set)
@@ -63,7 +72,8 @@ from numba.core import event, types  # noqa: E402
 numba.config.reload_config()  # in case numba was imported before this module
 
 DISABLED = numba.config.DISABLE_JIT
-_OPTIONS = dict(cache=True, error_model="numpy", fastmath=False, nogil=True,
+_OPTIONS = dict(cache=True, error_model="numpy", fastmath={"contract"} if CONTRACT else False,
+                nogil=True,
                 forceinline=False,      # set, so that a callee never inherits its caller's
                 no_cfunc_wrapper=True)  # no compiled function is passed as a value
 IR_INLINED = ("scene_of",)
@@ -121,7 +131,7 @@ class _Announcer(event.Listener):
         pass
 
 
-def _rank():
+def launcher_rank():
     """This process's MPI rank as the launcher tells it (0 when not under MPI)."""
     for name in _RANK_VARIABLES:
         if os.environ.get(name, "").isdigit():
@@ -129,5 +139,5 @@ def _rank():
     return 0
 
 
-if not DISABLED and _rank() == 0:
+if not DISABLED and launcher_rank() == 0:
     event.register("numba:compile", _Announcer())

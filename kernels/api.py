@@ -331,6 +331,7 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     The impact log keeps the first ``max_log`` impacts; the kernel counts them all.
     ``cpu_s`` is the CPU time of the simulation alone (not of compiling or loading it)."""
     from .driver import run_scene as _run_scene
+    from .state import new_work
     records = []
     row = scene_row(scene, records)
     rec = record_buffer(records)
@@ -338,7 +339,7 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     log = np.empty((max_log, codes.N_LOG))  # rows [:n_log] are written
     n_hist = int(row.solver.t_end / row.solver.dt_out) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
-    args = (row, rec, res, log, hist, control(cell=0))
+    args = (row, rec, res, log, hist, control(cell=0), new_work()[0])
     run = _compiled(_run_scene, args)
     t0 = time.process_time()
     n_log, n_h = run(*args)
@@ -384,6 +385,16 @@ def run_cells(rows, rec, budget=None):
     with Watchdog(ctl, budget):
         _run_cells(rows, rec, results.view(np.recarray), ctl)
     return results
+
+
+def cuda_unavailable():
+    """None when ``kernels.cuda_batch`` can run (numba-cuda and a GPU, or its simulator),
+    else the reason in words."""
+    import importlib.util
+    if importlib.util.find_spec("numba_cuda") is None:
+        return "numba-cuda is not installed (pip install '.[cuda]')"
+    from . import cuda_batch
+    return cuda_batch.available()
 
 
 def not_run(n, status=codes.INVALID_SCENE):

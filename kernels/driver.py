@@ -59,7 +59,7 @@ def _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
 @jit
 def _finite(z, n):
     for k in range(n):
-        if not np.isfinite(z[k]):
+        if not math.isfinite(z[k]):        # np.isfinite has no CUDA form
             return False
     return True
 
@@ -89,8 +89,8 @@ def _report(res, status, t, t_rest, mode, counts, scene, work):
 
 
 @jit
-def run_scene(row, rec, res, log, hist, ctl):
-    """Simulate one scene.
+def run_scene(row, rec, res, log, hist, ctl, work):
+    """Simulate one scene (a device function of the CUDA target as it is: ``cuda_batch``).
 
     Parameters
     ----------
@@ -107,6 +107,9 @@ def run_scene(row, rec, res, log, hist, ctl):
     ctl : ndarray of int64, shape (N_CTL,)
         The control array (``codes.CTL_*``): the scene ends with status ``TIME_BUDGET`` once
         ``ctl[CTL_STOP]`` equals ``ctl[CTL_CELL]`` as it was at the start.
+    work : record of ``state.WORK_DTYPE``
+        The scene's buffers, zeroed (``state.new_work``): the caller allocates them, as
+        device code cannot.
 
     Returns
     -------
@@ -122,8 +125,6 @@ def run_scene(row, rec, res, log, hist, ctl):
     method = int(solver.method)
     adaptive = method == ADAPTIVE     # the step size is controlled
     tab = tableau(method)
-    buffers = new_work()
-    work = buffers[0]
     q, z, z_new, z_stage, q_end = work.q, work.z, work.z_new, work.z_stage, work.q_end
     K, D, ctx, values, scratch = work.K, work.D, work.ctx, work.values, work.scratch
     extremes, mode_time = work.extremes, work.mode_time
@@ -272,8 +273,7 @@ def run_scene(row, rec, res, log, hist, ctl):
     if status == OK and mode == REST and t < t_end:
         mode_time[REST] += t_end - t                    # final rest lasts to the end
         nh = hold(hist, nh, t_end, q, REST, floor, rec, solver.dt_out)
-    _report(res, status, t, t_rest, mode, (impacts, steps, events, clamps), scene,
-            buffers[0])                                 # buffers live to the end
+    _report(res, status, t, t_rest, mode, (impacts, steps, events, clamps), scene, work)
     return nlog, nh
 
 
@@ -286,5 +286,6 @@ def run_cells(rows, rec, results, ctl):
     hist = np.zeros((0, N_HIST))
     for i in range(rows.shape[0]):
         ctl[CTL_CELL] = i
-        run_scene(rows[i], rec, results[i], log, hist, ctl)
+        buffers = new_work()
+        run_scene(rows[i], rec, results[i], log, hist, ctl, buffers[0])
     ctl[CTL_CELL] = rows.shape[0]

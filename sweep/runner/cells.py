@@ -122,7 +122,7 @@ def summarize(results, bodies, motions):
             for name, a in out.items()}
 
 
-def run_chunk(study, cells, *, budget=CELL_BUDGET):
+def run_chunk(study, cells, *, budget=CELL_BUDGET, backend="cpu"):
     """Simulate some cells of a study.
 
     Parameters
@@ -132,7 +132,9 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET):
         Cell ids (flat indices into the grid).
     budget : float or None
         Seconds of wall time a cell may run before it is stopped (``time_budget``);
-        None or 0: no limit.
+        None or 0: no limit (on the CPU: a GPU thread runs its cell to the end).
+    backend : {"cpu", "cuda"}
+        Where the kernel runs: ``kernels.api.run_cells`` or ``kernels.cuda_batch.run_cells``.
 
     Returns
     -------
@@ -147,7 +149,11 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET):
     built = np.ones(cells.size, dtype=bool)
     built[list(problems)] = False
     results = api.not_run(cells.size)
-    results[built] = api.run_cells(rows[built], rec, budget=budget)
+    if backend == "cuda":
+        from kernels import cuda_batch
+        results[built] = cuda_batch.run_cells(rows[built], rec)
+    else:
+        results[built] = api.run_cells(rows[built], rec, budget=budget)
     for k, problem in problems.items():
         _warn(cells[k], f"its scene cannot be built: {problem}")
     for k in np.flatnonzero(results["status"] == codes.TIME_BUDGET):

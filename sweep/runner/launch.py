@@ -176,7 +176,7 @@ def _watch(comm, options, dealt):
 
 def _chunk_runner(options):
     from .cells import run_chunk
-    return functools.partial(run_chunk, budget=options.cell_budget)
+    return functools.partial(run_chunk, budget=options.cell_budget, backend=options.backend)
 
 
 class _Rounds:

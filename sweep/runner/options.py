@@ -38,6 +38,9 @@ class RunOptions:
         Wall-time budget of one cell [s] (0: none).
     rank_timeout : float
         Seconds of silence always allowed to a rank before the job aborts (0: no watch).
+    backend : str
+        Where the cells run: ``"cpu"`` (default) or ``"cuda"`` (an NVIDIA GPU per rank,
+        ``kernels.cuda_batch``; docs/gpu.md).
     argv : tuple of str
         The arguments of the command line, said in the dataset's ``history``, by the output's
         lock and in the line after Ctrl-C (:meth:`command_line`).
@@ -52,6 +55,7 @@ class RunOptions:
     max_cells: int = MAX_CELLS
     cell_budget: float = CELL_BUDGET
     rank_timeout: float = WATCH_FLOOR
+    backend: str = "cpu"
     argv: tuple[str, ...] = ()
 
     def command_line(self, size=None):

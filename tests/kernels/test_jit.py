@@ -87,3 +87,10 @@ def test_first_compile_is_said_once_and_later_runs_load_it(tmp_path):
 def test_only_rank_0_says_it(tmp_path):
     cold = _python(CALL, _env(tmp_path, PMI_RANK="1"))
     assert cold.stdout.split() == ["0", "1"] and SAID not in cold.stderr
+
+
+def test_contraction_compiles_into_a_folder_of_its_own(tmp_path):
+    code = ("import kernels._jit as j; print(j.CACHE_DIR, j._OPTIONS['fastmath'] == {'contract'})")
+    out = _python(code, _env(tmp_path, KERNEL_CONTRACT="1"), cwd=KERNELS.parent).stdout.split()
+    folder = tmp_path / "rigid-block-sweeps" / f"numba-{_jit.SOURCE_DIGEST[:16]}-contract"
+    assert out == [str(folder), "True"]

@@ -165,6 +165,17 @@ def test_unusable_outputs_are_refused_before_any_work(tmp_path, small_study, out
     assert list((tmp_path / "sub").iterdir()) == []
 
 
+def test_backend_cuda_without_a_gpu_is_refused_before_any_work(tmp_path, small_study):
+    from kernels.api import cuda_unavailable
+    if cuda_unavailable() is None:
+        pytest.skip("this machine can run the CUDA kernel")
+    study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
+    done = cli([study, "--backend", "cuda"], cwd=tmp_path, timeout=60)
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert done.stderr.startswith("sweep.run: --backend cuda: ") and "nothing was run" in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]
+
+
 def test_a_parts_folder_taken_by_a_file_is_refused(tmp_path, small_study):
     study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
     (tmp_path / "r.nc.parts").write_text("not a folder")

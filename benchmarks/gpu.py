@@ -1,0 +1,165 @@
+"""``make bench-gpu`` (``python -m benchmarks.gpu [--quick]``): the CUDA kernel against every
+CPU core of the same machine, on a 10,000-cell map and an ensemble of records.
+
+The map is ``sweep_map.yaml`` with 400 amplitude levels (10,000 sweeps of 60 s), the
+ensemble ``studies/fragility_synthetic.yaml`` (1,920 synthetic motions scaled in PGA).  Each
+runs three times, compile and cache loading left out of the clock: on every CPU core (a
+process pool over chunks of ``kernels.api.run_cells``), on the GPU
+(``kernels.cuda_batch.run_cells``), and on every CPU core again with the kernel compiled with
+floating-point contraction (``KERNEL_CONTRACT=1``, ``kernels._jit``).  The last is the
+yardstick: GPU compilers fuse a*b + c into one rounding, so the GPU's overturning times may
+differ from the CPU's by as much as the CPU's own do when only that changes (chaotic rocking
+amplifies the last bit).  Statuses must be identical.  Writes a Markdown report
+(``-o``, default ``results/bench_gpu.md``); refuses, with exit status 2, without a GPU.
+"""
+import argparse
+import multiprocessing
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from kernels import api, codes
+
+from .markdown import table, write_text
+
+ROOT = Path(__file__).resolve().parents[1]
+MAP = Path(__file__).with_name("sweep_map.yaml")
+ENSEMBLE = ROOT / "studies" / "fragility_synthetic.yaml"
+MAP_LEVELS = 400                  # amplitude levels: 400 x 5 b/h x 5 sizes = 10,000 cells
+OUTPUT = Path("results/bench_gpu.md")
+CHUNKS_PER_CORE = 8               # the pool's chunks: late chunks balance the cores' load
+
+
+def _rows(path, raw=None, cells=None):
+    """(rows, rec) of the cells of a study file, or of ``raw`` (a study dict) written beside it."""
+    from sweep.runner.cell_checks import load_study
+    from sweep.runner.cells import build_rows
+    with tempfile.TemporaryDirectory(dir=path.parent, prefix=".bench_gpu_") as tmp:
+        if raw is not None:
+            path = Path(tmp) / path.name
+            path.write_text(yaml.safe_dump(raw, sort_keys=False))
+        study = load_study(path, check_cells=False)
+        ids = np.arange(study.n_cells if cells is None else min(cells, study.n_cells))
+        rows, rec, _, _, problems = build_rows(study, ids)
+    assert not problems, problems
+    return rows, rec
+
+
+def _ready(barrier):
+    from sweep.runner.cells import warm_up
+    warm_up()                     # compile or load the kernel before the clock starts
+    barrier.wait()
+
+
+def _chunk(args):
+    rows, rec = args
+    return api.run_cells(rows, rec)
+
+
+def on_cpu(rows, rec, contract=False):
+    """(results, wall [s]) of the rows on every core: a pool of fresh processes, with the
+    kernel compiled with contraction when ``contract``."""
+    cores = os.cpu_count()
+    ctx = multiprocessing.get_context("spawn")   # children import kernels._jit anew
+    barrier = ctx.Barrier(cores + 1)
+    os.environ["KERNEL_CONTRACT"] = "1" if contract else "0"
+    try:
+        with ctx.Pool(cores, initializer=_ready, initargs=(barrier,)) as pool:
+            barrier.wait()
+            size = max(1, rows.shape[0] // (CHUNKS_PER_CORE * cores))
+            parts = [(rows[i:i + size], rec) for i in range(0, rows.shape[0], size)]
+            t0 = time.perf_counter()
+            results = np.concatenate(pool.map(_chunk, parts, chunksize=1))
+            return results, time.perf_counter() - t0
+    finally:
+        del os.environ["KERNEL_CONTRACT"]
+
+
+def on_gpu(rows, rec):
+    """(results, wall [s]) of the rows on the GPU, after a launch that compiles."""
+    from kernels import cuda_batch
+    cuda_batch.run_cells(rows[:1], rec)
+    t0 = time.perf_counter()
+    results = cuda_batch.run_cells(rows, rec)
+    return results, time.perf_counter() - t0
+
+
+def differences(a, b):
+    """(cells whose status differs, |t_overturn differences| [s] where both overturned)."""
+    both = (a["status"] == codes.OVERTURNED) & (b["status"] == codes.OVERTURNED)
+    return int((a["status"] != b["status"]).sum()), np.abs(a["t_overturn"] - b["t_overturn"])[both]
+
+
+def _spread(dt):
+    if dt.size == 0:
+        return "no cell overturned in both"
+    return (f"median {np.median(dt):.2e}, 95 % {np.quantile(dt, 0.95):.2e}, "
+            f"max {dt.max():.2e} (of {dt.size})")
+
+
+def within_noise(dt_gpu, dt_fused):
+    """The GPU's time differences no larger than the CPU's contraction noise (medians, with
+    a factor of two for the sampling of a few chaotic cells)."""
+    if dt_gpu.size == 0 or np.median(dt_gpu) == 0.0:
+        return True
+    return dt_fused.size > 0 and np.median(dt_gpu) <= 2.0 * np.median(dt_fused)
+
+
+def compare(name, rows, rec):
+    """Table rows of one ensemble and whether the GPU met both criteria."""
+    cpu, wall_cpu = on_cpu(rows, rec)
+    fused, _ = on_cpu(rows, rec, contract=True)
+    gpu, wall_gpu = on_gpu(rows, rec)
+    flips_gpu, dt_gpu = differences(gpu, cpu)
+    flips_fused, dt_fused = differences(fused, cpu)
+    n = rows.shape[0]
+    return [[name, f"{n:,}", f"{n / wall_cpu:,.0f}", f"{n / wall_gpu:,.0f}",
+             f"{wall_cpu / wall_gpu:.1f}x", f"{flips_gpu} ({flips_fused})",
+             f"GPU {_spread(dt_gpu)}; contraction {_spread(dt_fused)}"]], \
+        flips_gpu == 0 and within_noise(dt_gpu, dt_fused)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.gpu", description=__doc__.split(
+        "\n\n")[0].replace("``", "`"))
+    parser.add_argument("--quick", action="store_true",
+                        help="1,000 map cells and 240 of the ensemble (a smoke run)")
+    parser.add_argument("-o", "--output", type=Path, default=OUTPUT,
+                        help="report file (default %(default)s)")
+    args = parser.parse_args(argv)
+    why = api.cuda_unavailable()
+    if why is not None:
+        print(f"benchmarks.gpu: needs an NVIDIA GPU and numba-cuda: {why}; nothing was run",
+              file=sys.stderr)
+        return 2
+    raw = yaml.safe_load(MAP.read_text())
+    raw["grid"]["amplitude"]["num"] = 40 if args.quick else MAP_LEVELS
+    rows, met = [], True
+    for name, (cells, rec) in (("map of 60 s sweeps", _rows(MAP, raw)),
+                               ("synthetic records", _rows(ENSEMBLE, cells=240 if args.quick
+                                                           else None))):
+        lines, ok = compare(name, cells, rec)
+        rows += lines
+        met &= ok
+    from numba import cuda
+    text = "\n".join([
+        "# The CUDA kernel against every CPU core", "",
+        f"{cuda.get_current_device().name.decode()} against {os.cpu_count()} CPU cores; "
+        "compile and cache loading left out.  Status differences in brackets and the "
+        "spread in brackets: the CPU kernel with contraction against without (the yardstick).",
+        "", table(["ensemble", "cells", "CPU cells/s", "GPU cells/s", "GPU/CPU",
+                   "statuses differing (contraction)", "|t_overturn GPU - CPU| [s]"], rows),
+        "", f"Statuses identical and times within the contraction noise: "
+            f"{'yes' if met else 'NO'}.", ""])
+    write_text(args.output, text)
+    print(text)
+    return 0 if met else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,73 @@
+"""The chunk kernel on an NVIDIA GPU: one thread per scene row (numba-cuda).
+
+``driver.run_scene`` is the device function as it is: numba-cuda compiles a CPU-compiled
+function called from a CUDA kernel for the device from its Python source, with every function
+it calls, so the CPU and the GPU run one source.  What device code cannot do, the source
+leaves to its callers: the scene's buffers (``state.WORK_DTYPE``) are allocated here, one
+record per row in device memory, zeroed, as ``driver.run_cells`` allocates them on the CPU.
+A thread runs its scene to the end (DiffEqGPU's per-thread ensemble kernels, MPGOS): there
+is no wall-time budget on the device, only the scene's step and event budgets.
+
+Imported only for ``--backend cuda``: it needs numba-cuda (``pip install .[cuda]``) and, to
+run, a GPU or the CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``).
+"""
+import functools
+
+import numpy as np
+from numba import cuda
+
+from . import api, codes
+from ._jit import launcher_rank
+from .driver import run_scene
+from .state import WORK_DTYPE
+from .watchdog import control
+
+THREADS_PER_BLOCK = 64   # scenes per block; a thread's registers, not shared memory, bound it
+BATCH = 1 << 16          # scenes per launch: their buffers take BATCH x 1.2 kB of device memory
+
+
+@cuda.jit
+def _run_rows(rows, rec, results, works, log, hist, ctl):
+    """Scene row i of ``rows`` into record i of ``results``, thread by thread."""
+    i = cuda.grid(1)
+    if i < rows.shape[0]:
+        run_scene(rows[i], rec, results[i], log, hist, ctl, works[i])
+
+
+def available():
+    """None when a GPU (or the CUDA simulator) can run the kernel, else why not."""
+    try:
+        if cuda.is_available():
+            return None
+    except Exception as err:      # a broken driver or toolkit says so here
+        return f"CUDA is not usable: {err}"
+    return "no CUDA GPU is visible (numba.cuda.is_available() is False)"
+
+
+@functools.cache
+def _select_device():
+    """One GPU per MPI rank where a node has several (rank modulo their number)."""
+    cuda.select_device(launcher_rank() % len(cuda.gpus))
+
+
+def run_cells(rows, rec, batch=BATCH):
+    """``kernels.api.run_cells`` on the GPU: n scene rows to n result records.
+
+    The record buffer ``rec`` goes to device memory once; rows go in launches of ``batch``.
+    """
+    _select_device()
+    rows = np.ascontiguousarray(api.as_records(rows).view(np.ndarray))
+    results = np.zeros(rows.shape[0], codes.RESULT_DTYPE)
+    d_rec = cuda.to_device(np.ascontiguousarray(rec, dtype=np.float64))
+    log = cuda.to_device(np.zeros((0, codes.N_LOG)))
+    hist = cuda.to_device(np.zeros((0, codes.N_HIST)))
+    ctl = cuda.to_device(control(cell=0))       # no stop request names cell 0
+    for start in range(0, rows.shape[0], batch):
+        part = rows[start:start + batch]
+        d_results = cuda.to_device(results[start:start + batch])
+        works = cuda.to_device(np.zeros(part.shape[0], WORK_DTYPE))
+        blocks = (part.shape[0] + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
+        _run_rows[blocks, THREADS_PER_BLOCK](cuda.to_device(part), d_rec, d_results, works,
+                                             log, hist, ctl)
+        results[start:start + batch] = d_results.copy_to_host()
+    return results
