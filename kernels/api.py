@@ -331,7 +331,7 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     The impact log keeps the first ``max_log`` impacts; the kernel counts them all.
     ``cpu_s`` is the CPU time of the simulation alone (not of compiling or loading it)."""
     from .driver import run_scene as _run_scene
-    from .state import new_work
+    from .state import WORK_DTYPE
     records = []
     row = scene_row(scene, records)
     rec = record_buffer(records)
@@ -339,7 +339,8 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
     log = np.empty((max_log, codes.N_LOG))  # rows [:n_log] are written
     n_hist = int(row.solver.t_end / row.solver.dt_out) + 2 if history else 0
     hist = np.zeros((n_hist, codes.N_HIST))
-    args = (row, rec, res, log, hist, control(cell=0), new_work()[0])
+    work = np.zeros(1, (np.record, WORK_DTYPE))  # the scene's buffers (state.new_work)
+    args = (row, rec, res, log, hist, control(cell=0), work[0])
     run = _compiled(_run_scene, args)
     t0 = time.process_time()
     n_log, n_h = run(*args)
