@@ -1,5 +1,5 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
-any chunk size, and of ``sweep.risk``'s report; abort on an exception; resume of a
+any chunk size, and of ``sweep.risk``'s report; chunks dealt to the rank that is free; abort on an exception; resume of a
 terminated job with another rank count; Ctrl-C; a stopped rank detected and named; the
 launcher/library mismatch message."""
 import os
@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 import xarray as xr
 from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
@@ -48,6 +49,22 @@ def test_two_ranks_equal_one_rank_for_any_chunk_size(tmp_path):
     assert set(reference["outcome"].values.ravel()) >= {0, 1, 2}
     for name in ("chunk3.nc", "chunk7.nc"):
         assert _open(tmp_path / name).identical(reference), name
+
+
+def test_chunks_go_to_the_rank_that_is_free(tmp_path):
+    """Dynamic dealing: a rank three times slower takes about a quarter of the chunks, and
+    both ranks end within a few chunks of each other (a fixed deal would give each half, and
+    rank 1 would end 1.2 s after rank 0)."""
+    import json
+
+    done = _mpiexec(PY, SCRIPT, "deal", tmp_path / "parts", cwd=tmp_path, timeout=120)
+    assert done.returncode == 0, done.stderr
+    stats = {int(r): s for r, s in json.loads(done.stdout).items()}
+    cells = np.concatenate([np.load(p)["cell"] for p in (tmp_path / "parts").glob("part-*")])
+    np.testing.assert_array_equal(np.sort(cells), np.arange(120))  # each cell once
+    assert stats[0][0] + stats[1][0] == 120
+    assert 2.0 < stats[0][0] / stats[1][0] < 4.5, stats  # speeds 1/10 ms : 1/30 ms = 3
+    assert abs(stats[0][1] - stats[1][1]) < 0.3, stats
 
 
 def test_exception_on_one_rank_aborts_the_job(tmp_path):
