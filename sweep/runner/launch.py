@@ -28,7 +28,7 @@ from ..io import study_schema
 from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
-from . import fingerprint, grid, mpi, refine, store
+from . import fingerprint, grid, mpi, rank_checks, refine, store
 from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
@@ -68,9 +68,11 @@ def _problems(path, err):
         say(f"  {line}", file=sys.stderr)
 
 
-def _load(path, options):
-    """The checked study and its writable output, or :class:`FileProblems`."""
-    study = load_study(path, output=options.output, max_cells=options.max_cells)
+def _load(comm, path, options):
+    """The checked study and its writable output, or :class:`FileProblems`; the cells'
+    checks shared by the ranks (``rank_checks``)."""
+    study = load_study(path, output=options.output, max_cells=options.max_cells,
+                       cells=rank_checks.shared(comm) if comm.Get_size() > 1 else None)
     why = output_problem(study.output)
     if why is not None:
         raise FileProblems([Problem("output" if options.output is None else "-o/--output",
@@ -128,7 +130,7 @@ def _plan(comm, path, options):
     """
     size = comm.Get_size()
     try:
-        study = _load(path, options)
+        study = _load(comm, path, options)
     except FileProblems as err:
         _problems(path, err)
         return [Stop(refused=True)] * size, None, None, None
@@ -417,6 +419,9 @@ def _run(comm, path, options, state):
         else:
             import kernels.driver  # noqa: F401
     plan = state.plan = mpi.distribute(comm, plans)
+    while isinstance(plan, rank_checks.Check):  # ranks other than 0: check cells first
+        state.study = rank_checks.check_share(comm, plan)
+        plan = state.plan = mpi.distribute(comm)
     if isinstance(plan, Stop):
         if plan.refused:
             raise Refused(path)
@@ -424,8 +429,8 @@ def _run(comm, path, options, state):
     if state.study is None:
         state.study = study_schema.load_study(plan.source, text=plan.text,
                                               output=plan.output, max_cells=None)
-        if not warm:
-            warm_up()  # loads what rank 0 compiled into the cache
+    if rank and not warm:
+        warm_up()  # loads what rank 0 compiled into the cache
     study = state.study
     parts = store.PartStore(plan.parts, plan.stamp)
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None

@@ -224,6 +224,15 @@ def abort_on_exception(comm):
         comm.Abort(1)
 
 
+def gather(comm, value):
+    """Every rank's ``value``, in rank order, on rank 0 (None on the others; one process:
+    ``[value]``); the ranks meet in a sleeping :func:`barrier` first."""
+    if not is_mpi(comm):
+        return [value]
+    barrier(comm)
+    return comm.gather(value, root=0)
+
+
 def distribute(comm, plans=None):
     """Rank 0 hands ``plans[r]`` to each rank r and keeps ``plans[0]``; the others wait for it.
 

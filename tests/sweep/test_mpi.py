@@ -67,6 +67,21 @@ def test_chunks_go_to_the_rank_that_is_free(tmp_path):
     assert abs(stats[0][1] - stats[1][1]) < 0.3, stats
 
 
+def test_cells_checked_by_two_ranks_say_what_one_says(tmp_path):
+    """The cells' checks shared by the ranks: the same problems (exit 2, nothing written) and
+    the same warnings as one process, line for line."""
+    bad = make_study({"frequency": [-2.0, 1.0, 2.0, -3.0], "B": [0.1, -0.2]}, output="b.nc")
+    doubted = make_study({"frequency": [1.0, 2.0], "excitation.horizontal.phase": [0.0, 90.0]},
+                         output="d.nc")
+    for raw, status in ((bad, 2), (doubted, 0)):
+        study = write_study(tmp_path / "s.yaml", raw)
+        one = cli([study, "--quiet", "--force"], cwd=tmp_path)
+        two = _mpiexec(PY, "-m", "sweep.run", study, "--quiet", "--force", cwd=tmp_path)
+        assert one.returncode == two.returncode == status, (one.stderr, two.stderr)
+        assert two.stderr == one.stderr and ("problems" if status else "warning") in one.stderr
+    assert not (tmp_path / "b.nc").exists()
+
+
 def test_exception_on_one_rank_aborts_the_job(tmp_path):
     start = time.monotonic()
     done = _mpiexec(PY, SCRIPT, "abort", cwd=tmp_path, timeout=60)
