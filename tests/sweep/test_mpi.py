@@ -127,15 +127,32 @@ def _slow_job(tmp_path, *extra):
     return study, job, store.parts_dir(tmp_path / "r.nc")
 
 
-def _rank_pid(rank):
-    """The pid of a rank of the running job, from its launcher's PMI_RANK."""
+def _parent(pid):
+    """The parent of process ``pid`` (0 when it is gone)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return 0
+    return int(stat.rsplit(")", 1)[1].split()[1])
+
+
+def _rank_pid(job, rank):
+    """The pid of a rank of the running ``job`` (a process under its mpiexec), from its
+    launcher's PMI_RANK; other jobs on the machine are not looked at."""
     for proc in Path("/proc").iterdir():
+        if not proc.name.isdigit():
+            continue
         try:
             env = (proc / "environ").read_bytes().split(b"\0")
             cmd = (proc / "cmdline").read_bytes()
         except OSError:
             continue
-        if b"sweep.run" in cmd and f"PMI_RANK={rank}".encode() in env:
+        if b"sweep.run" not in cmd or f"PMI_RANK={rank}".encode() not in env:
+            continue
+        pid = int(proc.name)
+        while pid > 1 and pid != job.pid:
+            pid = _parent(pid)
+        if pid == job.pid:
             return int(proc.name)
     raise AssertionError(f"no process of rank {rank}")
 
@@ -160,7 +177,7 @@ def test_ctrl_c_under_mpiexec_saves_and_resumes(tmp_path):
 def test_a_stopped_rank_is_detected_and_named(tmp_path):
     study, job, parts = _slow_job(tmp_path, "--rank-timeout", "2")
     wait_for_parts(job, parts, 4)
-    rank1 = _rank_pid(1)
+    rank1 = _rank_pid(job, 1)
     os.kill(rank1, signal.SIGSTOP)
     stopped = time.monotonic()
     try:
