@@ -97,5 +97,5 @@ def section(quick):
         "loop on the kernel's tableau with Housner's impact and the map's Zeno closure (no "
         "sliding, flight or other modes' events), at the map's rtol, atol and zeno_dt.", "",
         table(["measure", "value", "how"], rows), "",
-        f"Scaling by rank count (speed-up against one rank; datasets compared with one "
-        f"rank's):", "", scaling_text, ""]), [])
+        "Scaling by rank count (speed-up against one rank; datasets compared with one "
+        "rank's):", "", scaling_text, ""]), [])

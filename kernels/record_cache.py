@@ -4,8 +4,9 @@
 it does in a chunk's list; the cache outlives the chunk, so that a rank running many chunks of
 one study stores each record once and a GPU receives each once (``cuda_batch.DeviceRecords``).
 Records are found by their content (equal samples share an offset, whichever array holds
-them).  Past ``limit`` samples the cache starts over before the next chunk (:meth:`restart_if_full`),
-which bounds its memory; ``generation`` counts the restarts, for a device copy to follow.
+them).  Past ``limit`` samples the cache starts over before the next chunk
+(:meth:`RecordCache.restart_if_full`), which bounds its memory; ``generation`` counts the
+restarts, for a device copy to follow.
 """
 import hashlib
 

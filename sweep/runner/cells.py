@@ -6,9 +6,10 @@ builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
 whole chunk in one ``kernels.api.run_cells`` call and turns the result records into the
 per-cell arrays of ``cf.VARIABLES``.  A :class:`ChunkRunner` does the same for the chunks of
 one study on one rank, keeping the study's records (``kernels.record_cache``, and their copy
-in device memory on the GPU) from chunk to chunk.  One cell never stops the others: a scene that cannot be built is
-flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
-flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
+in device memory on the GPU) from chunk to chunk.  One cell never stops the others: a scene
+that cannot be built is flagged ``invalid_scene``, one that runs longer than the wall-time
+budget is stopped and flagged ``time_budget`` (both with a warning naming the cell, and
+``outcome = -1``).
 """
 import sys
 import warnings
