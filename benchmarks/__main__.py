@@ -3,7 +3,9 @@
 Sections are the modules named in ``SECTIONS``, each with ``section(quick) -> str``
 (Markdown); a section whose module is absent is left out.  The work-precision section also
 draws the plot.  The report starts with the machine, its load and the run time, because every
-number in it is a measurement on that machine at that time.
+number in it is a measurement on that machine at that time; then come the first section's
+tables (``headline``: cells per second, scaling by rank count, map-cell cost), the targets side
+by side and the other sections.
 """
 import argparse
 import importlib
@@ -17,7 +19,7 @@ from pathlib import Path
 
 from .markdown import table, write_text
 
-SECTIONS = ("startup", "work_precision", "throughput", "stability", "refine")
+SECTIONS = ("headline", "startup", "work_precision", "throughput", "stability", "refine")
 OUTPUT = Path("results/bench.md")
 FIGURE = Path("figures/bench_work_precision.png")
 
@@ -73,7 +75,8 @@ def main(argv=None):
                      load_start, os.getloadavg()[0], names)
     summary = "\n".join(["## Targets, side by side", "",
                          table(["target (DESIGN 10)", "measured", "met"], targets), ""])
-    write_text(args.output, "\n".join([header, summary, *(p.rstrip() + "\n" for p in parts)]))
+    parts = [p.rstrip() + "\n" for p in parts]
+    write_text(args.output, "\n".join([header, *parts[:1], summary, *parts[1:]]))
     print(f"wrote {args.output} and {args.figure}", file=sys.stderr)
     return 0
 

@@ -28,6 +28,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import codes
+from .record_cache import RecordCache
 from .watchdog import Watchdog, control
 
 DEFAULTS = {
@@ -85,11 +86,14 @@ def _number(value, path, positive=False):
 
 
 def place_record(samples, records):
-    """Offset of ``samples`` in the shared buffer ``record_buffer(records)``.
+    """Offset of ``samples`` in the shared buffer of some scene rows.
 
-    ``records`` is the list of sample arrays of a chunk of scene rows; ``samples`` is
-    appended to it unless the same array is there already, so that a record used by many
-    rows is stored once."""
+    ``records`` is the list of sample arrays of a chunk of scene rows (the buffer is
+    ``record_buffer(records)``): ``samples`` is appended to it unless the same array is there
+    already, so that a record used by many rows is stored once; or a study's
+    ``record_cache.RecordCache``, which places it itself (its ``buffer()``)."""
+    if isinstance(records, RecordCache):
+        return records.place(samples)
     offset = 0
     for stored in records:
         if stored is samples:
@@ -203,9 +207,10 @@ _SOLVER = tuple((key, f"solver.{key}", f"solver.{field}") for key, field in (
 def scene_row(scene, records=None):
     """Pack a resolved scene into a record of ``codes.SCENE_DTYPE``.
 
-    ``records`` is the list of record sample arrays shared by the rows of a chunk: the
-    scene's records are placed in it (``place_record``: an array already there is not
-    stored again) and the row's ``rec_off`` point into ``record_buffer(records)``.
+    ``records`` is the list of record sample arrays shared by the rows of a chunk, or a
+    study's ``record_cache.RecordCache``: the scene's records are placed in it
+    (``place_record``: a record already there is not stored again) and the row's ``rec_off``
+    point into ``record_buffer(records)`` (the cache's ``buffer()``).
 
     Raises
     ------

@@ -6,7 +6,8 @@ it calls, so the CPU and the GPU run one source.  What device code cannot do, th
 leaves to its callers: the scene's buffers (``state.WORK_DTYPE``) are allocated here, one
 record per row in device memory, zeroed, as ``driver.run_cells`` allocates them on the CPU.
 A thread runs its scene to the end (DiffEqGPU's per-thread ensemble kernels, MPGOS): there
-is no wall-time budget on the device, only the scene's step and event budgets.
+is no wall-time budget on the device, only the scene's step and event budgets.  A study's
+records stay in device memory from chunk to chunk (:class:`DeviceRecords`).
 
 Imported only for ``--backend cuda``: it needs numba-cuda (``pip install .[cuda]``) and, to
 run, a GPU or the CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``).
@@ -50,15 +51,49 @@ def _select_device():
     cuda.select_device(launcher_rank() % len(cuda.gpus))
 
 
+class DeviceRecords:
+    """A study's ``record_cache.RecordCache`` in device memory, kept from chunk to chunk.
+
+    :meth:`update` sends only the samples the cache gained since the last call (all of them
+    after the cache started over); a larger device buffer takes the old one's samples by a
+    device-to-device copy.  ``sent`` counts the samples sent from the host.
+    """
+
+    def __init__(self):
+        self._array = None
+        self._generation = None
+        self.size = 0
+        self.sent = 0
+
+    def update(self, cache):
+        """The device copy of ``cache.buffer()``, brought up to date."""
+        _select_device()
+        host = cache.buffer()
+        if cache.generation != self._generation:
+            self._generation, self.size = cache.generation, 0
+        if self._array is None or host.size > self._array.size:
+            grown = cuda.device_array(max(host.size, 2 * self.size))
+            if self.size:
+                grown[:self.size].copy_to_device(self._array[:self.size])
+            self._array = grown
+        if host.size > self.size:
+            self._array[self.size:host.size].copy_to_device(host[self.size:])
+            self.sent += host.size - self.size
+            self.size = host.size
+        return self._array[:self.size]
+
+
 def run_cells(rows, rec, batch=BATCH):
     """``kernels.api.run_cells`` on the GPU: n scene rows to n result records.
 
-    The record buffer ``rec`` goes to device memory once; rows go in launches of ``batch``.
+    The record buffer ``rec`` is a device array (:class:`DeviceRecords`) or goes to device
+    memory once; rows go in launches of ``batch``.
     """
     _select_device()
     rows = np.ascontiguousarray(api.as_records(rows).view(np.ndarray))
     results = np.zeros(rows.shape[0], codes.RESULT_DTYPE)
-    d_rec = cuda.to_device(np.ascontiguousarray(rec, dtype=np.float64))
+    d_rec = cuda.to_device(np.ascontiguousarray(rec, dtype=np.float64)) \
+        if isinstance(rec, np.ndarray) else rec
     log = cuda.to_device(np.zeros((0, codes.N_LOG)))
     hist = cuda.to_device(np.zeros((0, codes.N_HIST)))
     ctl = cuda.to_device(control(cell=0))       # no stop request names cell 0

@@ -4,6 +4,7 @@ dataset (DESIGN.md sections 5-7).
     python -m sweep.run STUDY.yaml [--dry-run] [--force] [--quiet] [--chunk-size N]
                                    [--seed N] [-o OUTPUT.nc] [--max-cells N]
                                    [--cell-budget S] [--rank-timeout S]
+                                   [--backend cpu|cuda]
     mpiexec -n 2 python -m sweep.run STUDY.yaml
 
 The command parses its arguments into ``runner.options.RunOptions``, takes the communicator

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 import hard_cases
 from benchmarks import floor, scenes, throughput, work_precision
@@ -85,14 +86,16 @@ def test_scipy_floor_motion_is_the_kernels(key):
 @pytest.mark.slow
 @pytest.mark.mpi
 def test_quick_benchmark_run(tmp_path):
-    """``python -m benchmarks --quick`` writes the report with every section and a PNG plot;
-    the quick map gives identical datasets on 1 and 2 ranks."""
+    """``python -m benchmarks --quick`` writes the report, its headline tables first, with every
+    section and a PNG plot; the quick map gives identical datasets on 1 and 2 ranks."""
     report, figure = tmp_path / "bench.md", tmp_path / "wp.png"
     done = subprocess.run([sys.executable, "-m", "benchmarks", "--quick", "-o", str(report),
                            "--figure", str(figure)], cwd=ROOT, capture_output=True, text=True,
                           timeout=600)
     assert done.returncode == 0, done.stderr
     text = report.read_text()
+    assert text.index("## Headline: cells per second") < text.index("## Targets, side by side")
+    assert "| CPU, 1 rank |" in text and "| floor, same cells |" in text
     for heading in ("## Work-precision", "## Throughput", "## Stability on hard cases",
                     "### Steady rocking", "### Chaotic rocking"):
         assert heading in text
@@ -102,7 +105,8 @@ def test_quick_benchmark_run(tmp_path):
 
 def test_floor_loop_meets_the_free_rocking_anchor_and_the_kernel():
     """The floor (the kernel's tableau, rocking only) against PHYSICS A4's quadrature on free
-    rocking, and against the kernel's impact times on steady rocking (Housner's impact)."""
+    rocking, and against the kernel's impact times on steady rocking and on the 60 s log
+    sweep (Housner's impact)."""
     free = next(s for s in scenes.SCENES if s.key == "free_rocking")
     out = floor.run(free.resolved, 1e-10, 1e-12)
     assert scenes.error(scenes.Outcome.of_scipy(out), free.anchor(), free)[0] < 1e-9
@@ -112,4 +116,22 @@ def test_floor_loop_meets_the_free_rocking_anchor_and_the_kernel():
     out = floor.run(steady.resolved, 1e-10, 1e-12)
     assert len(out["impact_times"]) == len(kernel.impact_times) == 79
     np.testing.assert_allclose(out["impact_times"], kernel.impact_times, rtol=0, atol=1e-9)
-    assert not floor.takes(next(s for s in scenes.SCENES if s.key == "sweep").resolved)
+    sweep = next(s for s in scenes.SCENES if s.key == "sweep").resolved
+    out = floor.run(sweep, 1e-10, 1e-12)
+    kernel = run_scene({**sweep, "solver": {**sweep["solver"], "rtol": 1e-12, "atol": 1e-14}})
+    assert len(out["impact_times"]) == len(kernel.impact_times) > 500
+    np.testing.assert_allclose(out["impact_times"], kernel.impact_times, rtol=0, atol=1e-7)
+    assert not floor.takes(next(s for s in scenes.SCENES if s.key == "el_centro").resolved)
+
+
+def test_floor_loop_closes_bursts_within_zeno_dt():
+    """On a cell of the throughput map whose rocking dies out in bursts of impacts, the map's
+    zeno_dt ends each burst in rest: less than half the impacts of the classical closure
+    alone."""
+    from sweep.io.scene_schema import load_scene, resolve_scene
+    from sweep.io.study_schema import load_study
+    from sweep.runner import grid
+    study = load_study(throughput.quick_study(yaml.safe_load(throughput.STUDY.read_text())))
+    cell = resolve_scene(load_scene(grid.cell_scene(study, 2)))
+    plain, closed = (floor.run(cell, 1e-6, 1e-8, zeno_dt=z) for z in (0.0, 1e-4))
+    assert len(closed["impact_times"]) < len(plain["impact_times"]) / 2

@@ -53,7 +53,8 @@ SCENE = (Section("", scene.Scene, {}),
          Section("solver", scene.Solver, DEFAULTS["solver"]))
 STUDY = (Section("", study.StudyFile, {"output": f"{study.OUTPUT_DIR}/<name>.nc"}),
          Section("grid.<axis> (a mapping)", study.RangeSpec, {"spacing": study.SPACINGS[0]}),
-         Section("refine", study.RefineSpec, {}))
+         Section("refine", study.RefineSpec, {}),
+         Section("run", study.RunSpec, {"backend": study.BACKENDS[0]}))
 BODIES = (Section("", bodies.BodiesFile, {}),
           Section("sites[i]", bodies.SiteEntry, {}),
           Section("bodies[i], sites[i].bodies[j]", bodies.BodyEntry, {}),

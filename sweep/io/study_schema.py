@@ -8,7 +8,8 @@ grid and, when the caller gives a cell check (``sweep.runner.cell_checks``), eve
 All problems are reported at once, through the shared formatter, as
 :class:`~sweep.io.problems.FileProblems` with dotted paths (``grid.amplitude.num``, ``zip[0]``,
 ``scene.body.B``, ``refine.tolerance``).  An optional ``refine: {axis, tolerance}`` asks for
-the overturning boundary along one axis by bisection (``sweep.runner.refine``).
+the overturning boundary along one axis by bisection (``sweep.runner.refine``); an optional
+``run: {backend}`` says where the cells run (``sweep.run --backend`` overrides it).
 """
 import sys
 from dataclasses import dataclass
@@ -31,6 +32,7 @@ from .study_axes import (AXIS_LIST, MAX_AXIS_VALUES, Refine, axis, axis_list, di
 from .yamlio import read_text
 
 SPACINGS = ("linear", "log")
+BACKENDS = ("cpu", "cuda")  # where a study's cells run (docs/gpu.md)
 OUTPUT_DIR = "results"  # default output: results/<name>.nc, relative to the working directory
 # Largest grid accepted unless the caller lifts the limit (``sweep.run --max-cells``): two
 # million cells take days of CPU at the typical 0.1-1 s a cell, and their merged arrays some
@@ -53,6 +55,7 @@ class Study:
     base_dir: Path = Path(".")
     description: str = ""
     refine: Refine = None
+    backend: str = None  # run.backend; None: not said (the CPU)
 
     @property
     def axes(self):
@@ -169,6 +172,17 @@ class RefineSpec(StrictModel):
                     "('0.01 west')")
 
 
+class RunSpec(StrictModel):
+    """``run: {backend}``: how the study's cells run, not what they compute, so not part of
+    the inputs' fingerprint (a run may resume on the other backend; docs/gpu.md)."""
+
+    backend: Optional[Annotated[Any, AfterValidator(_rule(
+        lambda v: v in BACKENDS, f"must be one of: {', '.join(BACKENDS)}")), WithJsonSchema(
+            {"enum": list(BACKENDS)})]] = Field(
+        None, description="where the cells run: cpu, or cuda (an NVIDIA GPU per rank; "
+                          "sweep.run --backend overrides it)")
+
+
 def _mapping_of(what):
     """A validator for a section that must be a non-empty mapping."""
     return BeforeValidator(_rule(_non_empty(dict), f"required: {what}"))
@@ -178,6 +192,12 @@ def _refine_mapping(value):
     if not isinstance(value, dict):
         raise ValueError("must be a mapping {axis: <an axis of grid>, tolerance: <bracket "
                          "width>}")
+    return value
+
+
+def _run_mapping(value):
+    if not isinstance(value, dict):
+        raise ValueError("must be a mapping {backend: cpu or cuda}")
     return value
 
 
@@ -215,6 +235,8 @@ class StudyFile(StrictModel):
                           "name -> its axes")
     refine: Optional[Annotated[RefineSpec, BeforeValidator(_refine_mapping)]] = Field(
         None, description="find the overturning boundary along one axis by bisection")
+    run: Optional[Annotated[RunSpec, BeforeValidator(_run_mapping)]] = Field(
+        None, description="how the cells run (not what they compute)")
     output: Optional[Annotated[Any, AfterValidator(_file_path), WithJsonSchema(
         {"type": "string"})]] = Field(None, description="the netCDF dataset written")
 
@@ -260,7 +282,7 @@ class StudyFile(StrictModel):
 
 
 _FIELD_NAMES = sorted(set(StudyFile.model_fields) | set(RangeSpec.model_fields)
-                      | set(RefineSpec.model_fields))
+                      | set(RefineSpec.model_fields) | set(RunSpec.model_fields))
 _CONTEXT = {"base_dir": Path("."), "source": None, "text": "", "output": None,
             "max_cells": MAX_CELLS, "cells": None}  # the context of a StudyFile by default
 
@@ -330,10 +352,13 @@ def _study(data, scene, context, dims, refined):
         data.get("output", f"{OUTPUT_DIR}/{name}.nc")
     if not isinstance(out, (str, Path)) or not str(out).strip():
         out = f"{OUTPUT_DIR}/{name}.nc"
+    run = data.get("run")
+    backend = run.get("backend") if isinstance(run, dict) else None
     return Study(name=name.strip(), title=str(data.get("title", name)).strip(), scene=scene,
                  dims=dims, output=Path(out), text=context["text"], source=source,
                  base_dir=context["base_dir"],
-                 description=str(data.get("description", "")).strip(), refine=refined)
+                 description=str(data.get("description", "")).strip(), refine=refined,
+                 backend=backend if backend in BACKENDS else None)
 
 
 def _size(study, max_cells):

@@ -4,9 +4,12 @@
 builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
 (``io.scene_schema``), packs it into a scene record (``kernels.api.scene_row``), runs the
 whole chunk in one ``kernels.api.run_cells`` call and turns the result records into the
-per-cell arrays of ``cf.VARIABLES``.  One cell never stops the others: a scene that cannot be built is
-flagged ``invalid_scene``, one that runs longer than the wall-time budget is stopped and
-flagged ``time_budget`` (both with a warning naming the cell, and ``outcome = -1``).
+per-cell arrays of ``cf.VARIABLES``.  A :class:`ChunkRunner` does the same for the chunks of
+one study on one rank, keeping the study's records (``kernels.record_cache``, and their copy
+in device memory on the GPU) from chunk to chunk.  One cell never stops the others: a scene
+that cannot be built is flagged ``invalid_scene``, one that runs longer than the wall-time
+budget is stopped and flagged ``time_budget`` (both with a warning naming the cell, and
+``outcome = -1``).
 """
 import sys
 import warnings
@@ -15,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from kernels import api, codes
+from kernels.record_cache import RecordCache
 
 from .. import cf
 from ..bodies import body_constants, body_sides, single_shock_velocity, west_acceleration
@@ -32,15 +36,17 @@ WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
 CELL_BUDGET = 300.0  # s of wall time one cell may run before it is stopped (run_chunk)
 
 
-def build_rows(study, cells):
+def build_rows(study, cells, records=None):
     """Kernel rows, record buffer, bodies and horizontal motions of some cells.
+
+    The cells' records are placed in ``records``, a ``kernels.record_cache.RecordCache`` (a
+    record used by many cells is stored once; default: a new one for these cells).
 
     Returns
     -------
     rows : ndarray of ``codes.SCENE_DTYPE``, shape (n,)
     rec : ndarray
-        The shared record buffer (a record used by many cells is stored once:
-        ``kernels.api.place_record``).
+        The record buffer the rows point into (``records.buffer()``).
     bodies : ndarray, shape (n, 5)
         B, H [m], i_g [m] (NaN for a uniform body) and G = (x_G, y_G) [m] (NaN for G in the
         middle) of each cell.
@@ -54,7 +60,8 @@ def build_rows(study, cells):
     rows = api.scene_rows(len(cells))
     bodies = np.empty((len(cells), 5))
     motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
-    records, problems = [], {}
+    records = RecordCache() if records is None else records
+    problems = {}
     for k, index in enumerate(cells):
         try:
             resolved = resolve_scene(load_scene(grid.cell_scene(study, int(index)),
@@ -67,7 +74,7 @@ def build_rows(study, cells):
         bodies[k] = (body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"],
                      *((np.nan, np.nan) if body["G"] is None else body["G"]))
         motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
-    return rows, api.record_buffer(records), bodies, motions, problems
+    return rows, records.buffer(), bodies, motions, problems
 
 
 def summarize(results, bodies, motions):
@@ -122,19 +129,56 @@ def summarize(results, bodies, motions):
             for name, a in out.items()}
 
 
+class ChunkRunner:
+    """``run_chunk(study, cells)`` for the chunks of one study on one rank: the study's records
+    are stored once (``kernels.record_cache.RecordCache``) and, on the GPU, sent to device
+    memory once (``kernels.cuda_batch.DeviceRecords``).
+
+    Parameters
+    ----------
+    budget : float or None
+        Seconds of wall time a cell may run before it is stopped (``time_budget``);
+        None or 0: no limit (on the CPU: a GPU thread runs its cell to the end).
+    backend : {"cpu", "cuda"}
+        Where the kernel runs: ``kernels.api.run_cells`` or ``kernels.cuda_batch.run_cells``.
+    """
+
+    def __init__(self, *, budget=CELL_BUDGET, backend="cpu"):
+        self.budget, self.backend = budget, backend
+        self.records = RecordCache()
+        self.device = None  # the records' DeviceRecords, once a chunk ran on the GPU
+
+    def __call__(self, study, cells):
+        """Simulate some cells of ``study``: :func:`run_chunk`'s result."""
+        cells = np.asarray(cells, dtype=np.int64).reshape(-1)
+        self.records.restart_if_full()
+        rows, rec, bodies, motions, problems = build_rows(study, cells, self.records)
+        built = np.ones(cells.size, dtype=bool)
+        built[list(problems)] = False
+        results = api.not_run(cells.size)
+        if self.backend == "cuda":
+            from kernels import cuda_batch
+            self.device = self.device or cuda_batch.DeviceRecords()
+            results[built] = cuda_batch.run_cells(rows[built], self.device.update(self.records))
+        else:
+            results[built] = api.run_cells(rows[built], rec, budget=self.budget)
+        for k, problem in problems.items():
+            _warn(cells[k], f"its scene cannot be built: {problem}")
+        for k in np.flatnonzero(results["status"] == codes.TIME_BUDGET):
+            _warn(cells[k], f"stopped after the per-cell wall-time budget of {self.budget:g} s")
+        return {"cell": cells, **summarize(results, bodies, motions)}
+
+
 def run_chunk(study, cells, *, budget=CELL_BUDGET, backend="cpu"):
-    """Simulate some cells of a study.
+    """Simulate some cells of a study (one :class:`ChunkRunner` call).
 
     Parameters
     ----------
     study : Study
     cells : array_like of int, shape (n,)
         Cell ids (flat indices into the grid).
-    budget : float or None
-        Seconds of wall time a cell may run before it is stopped (``time_budget``);
-        None or 0: no limit (on the CPU: a GPU thread runs its cell to the end).
-    backend : {"cpu", "cuda"}
-        Where the kernel runs: ``kernels.api.run_cells`` or ``kernels.cuda_batch.run_cells``.
+    budget, backend
+        As :class:`ChunkRunner`'s.
 
     Returns
     -------
@@ -144,21 +188,7 @@ def run_chunk(study, cells, *, budget=CELL_BUDGET, backend="cpu"):
         budget, a scene that cannot be built) is flagged by ``status`` and ``outcome = -1``;
         nothing is raised for it (a ``RuntimeWarning`` names the last two kinds).
     """
-    cells = np.asarray(cells, dtype=np.int64).reshape(-1)
-    rows, rec, bodies, motions, problems = build_rows(study, cells)
-    built = np.ones(cells.size, dtype=bool)
-    built[list(problems)] = False
-    results = api.not_run(cells.size)
-    if backend == "cuda":
-        from kernels import cuda_batch
-        results[built] = cuda_batch.run_cells(rows[built], rec)
-    else:
-        results[built] = api.run_cells(rows[built], rec, budget=budget)
-    for k, problem in problems.items():
-        _warn(cells[k], f"its scene cannot be built: {problem}")
-    for k in np.flatnonzero(results["status"] == codes.TIME_BUDGET):
-        _warn(cells[k], f"stopped after the per-cell wall-time budget of {budget:g} s")
-    return {"cell": cells, **summarize(results, bodies, motions)}
+    return ChunkRunner(budget=budget, backend=backend)(study, cells)
 
 
 def _warn(cell, text):

@@ -9,14 +9,13 @@ import sys
 
 from ..cli import argument_parser, checked_type, command, positive_int
 from ..io.exits import EXIT_BAD_INPUT
-from ..io.study_schema import MAX_CELLS
+from ..io.study_schema import BACKENDS, MAX_CELLS
 from . import grid, mpi
 from .cells import CELL_BUDGET
 from .options import RunOptions
 
 # seconds of a budget or a time-out: 0 for no limit
 _seconds = checked_type(float, lambda v: 0 <= v < math.inf, "a finite number of seconds >= 0")
-BACKENDS = ("cpu", "cuda")
 _cells = checked_type(int, lambda v: v >= 0, "a whole number >= 0 (0: no limit)")
 
 
@@ -51,9 +50,10 @@ def parse_args(argv=None):
                              f"{mpi.WATCH_FACTOR:g} x the slowest chunk so far) is taken for "
                              "stopped or stuck and the job aborts, naming it and its cells "
                              "(default %(default)s; 0: no watch)")
-    parser.add_argument("--backend", choices=BACKENDS, default="cpu",
-                        help="where the cells run: cpu (default) or cuda, an NVIDIA GPU per "
-                             "rank (needs numba-cuda: pip install '.[cuda]'; docs/gpu.md)")
+    parser.add_argument("--backend", choices=BACKENDS, default=None,
+                        help="where the cells run: cpu or cuda, an NVIDIA GPU per rank (needs "
+                             "numba-cuda: pip install '.[cuda]'; docs/gpu.md); default: the "
+                             "study's run.backend, else cpu")
     args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)
     return args
@@ -76,13 +76,5 @@ def main(argv=None):
     comm = mpi.world_or_say("sweep.run")
     if comm is None:
         return EXIT_BAD_INPUT
-    if args.backend == "cuda":
-        from kernels.api import cuda_unavailable
-        from .summary import say
-        why = cuda_unavailable()
-        if why is not None:
-            if comm.Get_rank() == 0:
-                say(f"sweep.run: --backend cuda: {why}; nothing was run", file=sys.stderr)
-            return EXIT_BAD_INPUT
     from . import launch  # the study machinery once the communicator stands
     return launch.run_status(comm, args.study, run_options(args))

@@ -14,7 +14,6 @@ exit status.  :func:`run_study` runs the same rounds in one process with the ser
 communicator, keeps the results in memory and returns the Dataset (``sweep.run_study`` in a
 notebook).
 """
-import functools
 import signal
 import sys
 import threading
@@ -80,6 +79,25 @@ def _load(comm, path, options):
     return study
 
 
+def _backend_problem(study, options):
+    """Why the study's cells cannot run where they are asked to (on CUDA), or None."""
+    if options.backend_of(study) != "cuda":
+        return None
+    from kernels.api import cuda_unavailable
+    return cuda_unavailable()
+
+
+def _backend_refused(path, study, options):
+    """Say why the study's cells cannot run on the CUDA backend asked for (True), or False."""
+    why = _backend_problem(study, options)
+    if why is None:
+        return False
+    said = f"--backend cuda: {why}" if options.backend else \
+        f"{path}: run.backend: {why} (got: 'cuda')"
+    say(f"sweep.run: {said}; nothing was run", file=sys.stderr)
+    return True
+
+
 def _open(study, options, parts):
     """Take the output's lock and make the output and parts ready (rank 0).
 
@@ -134,6 +152,8 @@ def _plan(comm, path, options):
     except FileProblems as err:
         _problems(path, err)
         return [Stop(refused=True)] * size, None, None, None
+    if _backend_refused(path, study, options):
+        return [Stop(refused=True)] * size, None, None, None
     parts = store.PartStore(store.parts_dir(study.output))
     if options.dry_run:
         done = parts.done_cells() if parts.directory.is_dir() else []
@@ -180,9 +200,10 @@ def _watch(comm, options):
     return mpi.Watch(comm.Get_size(), floor=options.rank_timeout)
 
 
-def _chunk_runner(options):
-    from .cells import run_chunk
-    return functools.partial(run_chunk, budget=options.cell_budget, backend=options.backend)
+def _chunk_runner(study, options):
+    """This rank's ``run_chunk`` for every round of ``study`` (its records kept between)."""
+    from .cells import ChunkRunner
+    return ChunkRunner(budget=options.cell_budget, backend=options.backend_of(study))
 
 
 class _Rounds:
@@ -209,6 +230,7 @@ class _Rounds:
         self.parts, self.first = parts, first
         self.before = _load_rest  # once, before rank 0's first chunk
         self.stats = {}
+        self.run_chunk = _chunk_runner(study, options)
 
     def _round_parts(self, index, study):
         """The part files of round ``index`` (None: a grid study's) and their fingerprint."""
@@ -239,7 +261,7 @@ class _Rounds:
                             prefix=self.name if index is None else f"{self.name}: round {index}")
         before, self.before = self.before, None
         kept, stats = mpi.work(comm, study, deal.chunks, store=parts, progress=progress,
-                               run_chunk=_chunk_runner(options), before=before,
+                               run_chunk=self.run_chunk, before=before,
                                watch=_watch(comm, options))
         progress.close()
         for rank, done in stats.items():
@@ -259,7 +281,7 @@ def _added(total, done):
 
 def _follow(comm, study, options):
     """A rank other than 0: compute the chunks of every round rank 0 deals, until it ends."""
-    run_chunk = _chunk_runner(options)
+    run_chunk = _chunk_runner(study, options)
     while (plan := mpi.distribute(comm)) is not None:
         mpi.work(comm, study if plan.study is None else plan.study, plan.chunks,
                  run_chunk=run_chunk, store=store.PartStore(plan.parts, plan.stamp))
@@ -471,10 +493,14 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
     Raises
     ------
     FileProblems
-        Every problem of the study, with dotted paths.
+        Every problem of the study, with dotted paths (``run.backend`` when it asks for CUDA
+        and none is usable).
     """
     study = load_study(study)
     options = RunOptions(quiet=not progress, chunk_size=chunk_size, seed=seed)
+    why = _backend_problem(study, options)
+    if why is not None:
+        raise FileProblems([Problem("run.backend", "cuda", why)], study.source)
     comm = mpi.SerialComm()
     result = _compute(comm, study, options, _Rounds(comm, study, options, "sweep.run_study"))
     return _dataset(study, result, f"sweep.run_study({study.source or study.name!r})")

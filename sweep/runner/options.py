@@ -38,9 +38,10 @@ class RunOptions:
         Wall-time budget of one cell [s] (0: none).
     rank_timeout : float
         Seconds of silence always allowed to a rank before the job aborts (0: no watch).
-    backend : str
-        Where the cells run: ``"cpu"`` (default) or ``"cuda"`` (an NVIDIA GPU per rank,
-        ``kernels.cuda_batch``; docs/gpu.md).
+    backend : str or None
+        Where the cells run: ``"cpu"`` or ``"cuda"`` (an NVIDIA GPU per rank,
+        ``kernels.cuda_batch``; docs/gpu.md); None: the study's ``run.backend``, else the CPU
+        (:meth:`backend_of`).
     argv : tuple of str
         The arguments of the command line, said in the dataset's ``history``, by the output's
         lock and in the line after Ctrl-C (:meth:`command_line`).
@@ -55,8 +56,12 @@ class RunOptions:
     max_cells: int = MAX_CELLS
     cell_budget: float = CELL_BUDGET
     rank_timeout: float = WATCH_FLOOR
-    backend: str = "cpu"
+    backend: str | None = None
     argv: tuple[str, ...] = ()
+
+    def backend_of(self, study):
+        """Where the cells of ``study`` run: this option, else the study's, else the CPU."""
+        return self.backend or study.backend or "cpu"
 
     def command_line(self, size=None):
         """The command line, with ``(<size> ranks)`` after it when ``size`` is given."""

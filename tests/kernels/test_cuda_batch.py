@@ -20,6 +20,7 @@ def test_simulator_runs_every_mode_as_the_cpu():
                          capture_output=True, text=True, timeout=600)
     assert ran.returncode == 0, ran.stdout + ran.stderr
     assert "DIFFERENT" not in ran.stdout and "modes not reached: none" in ran.stdout
+    assert "record ensemble in 3 chunks: same" in ran.stdout and ": once" in ran.stdout
 
 
 @pytest.mark.slow

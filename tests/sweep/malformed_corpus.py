@@ -2,8 +2,8 @@
 
 :func:`cases` builds several hundred cases, deterministically (seeded), from the bundled examples
 (``studies/steady_rocking.yaml``, ``smoke.yaml``, ``fig18_elcentro_ns.yaml``,
-``refine_example.yaml``, ``bodies_example.yaml``), shrunk to a few short cells so that a case
-that turns out valid runs in a blink:
+``refine_example.yaml`` with ``run: {backend: cpu}``, ``bodies_example.yaml``), shrunk to a
+few short cells so that a case that turns out valid runs in a blink:
 
 * every leaf replaced by hostile values (huge integers, 1e400, NaN, inf, -0, negative, bool,
   null, list, mapping, a very long string, control characters, a bad timestamp, ...);
@@ -79,7 +79,8 @@ def _kind(path, value):
         return TEXT if not path.startswith("scene.excitation") else CHOICE
     if isinstance(value, bool):
         return FLAG
-    if last in ("kind", "method", "hold", "law", "shape", "spacing", "unit", "axis", "units"):
+    if last in ("kind", "method", "hold", "law", "shape", "spacing", "unit", "axis", "units",
+                "backend"):
         return CHOICE
     return NUMBER
 
@@ -145,6 +146,7 @@ def _bases():
     fig18["scene"]["solver"]["t_end"] = 0.5
     refine = _small_grid(_load("refine_example.yaml"))
     refine["grid"]["amplitude"]["num"] = 3
+    refine["run"] = {"backend": "cpu"}
     bodies = _load("bodies_example.yaml")
     bodies["bodies"] = [bodies["bodies"][0], bodies["bodies"][4]]
 
@@ -174,8 +176,9 @@ def _leaf_cases(base, tool, args, data, overridden, rng):
         leaves = [(k, v) for k, v in leaves if k[0] == "grid"]
     if base == "fig18":  # the record study: its axes and records
         leaves = [(k, v) for k, v in leaves if k[0] == "grid" or k[:2] == ("scene", "excitation")]
-    if base == "refine":  # the refine study: its refined axis and tolerance
-        leaves = [(k, v) for k, v in leaves if k[0] == "refine" or k[:2] == ("grid", "amplitude")]
+    if base == "refine":  # the refine study: its refined axis and tolerance, its backend
+        leaves = [(k, v) for k, v in leaves
+                  if k[0] in ("refine", "run") or k[:2] == ("grid", "amplitude")]
     for keys, value in leaves:
         path = _dotted(keys)
         kind = _kind(path, value)

@@ -13,7 +13,8 @@ import sweep
 from kernels import codes
 from sweep import cf
 from sweep.runner.cell_checks import load_study
-from sweep.runner.cells import CELL_BUDGET, run_chunk
+from sweep.io.records import load_record
+from sweep.runner.cells import CELL_BUDGET, ChunkRunner, run_chunk
 
 
 def _study(grid, **scene):
@@ -70,3 +71,21 @@ def test_energy_clamps_per_cell():
     scene["contact"] = {"mu": 10, **both}
     one = sweep.simulate(scene)
     assert int(clamps.sel(both)) == one.energy_clamps == one.impact_count
+
+
+def test_the_records_of_a_study_are_kept_from_chunk_to_chunk():
+    """A chunk runner stores each record of a record ensemble once over several chunks and
+    gives, byte for byte, the results of chunks that each store their own."""
+    raw = make_study({"record": ["elcentro1940_ns", "taft1952_ew_s69e"],
+                      "excitation.horizontal.scale": [1.0, 2.0]})
+    raw["scene"]["excitation"] = {"horizontal": {"kind": "record", "name": "elcentro1940_ns"}}
+    raw["scene"]["solver"] = {"t_end": 1.0}
+    study = load_study(raw, check_cells=False)
+    runner = ChunkRunner()
+    for chunk in ([3], [0, 2], [1]):
+        kept, alone = runner(study, chunk), run_chunk(study, chunk)
+        for name in alone:
+            assert kept[name].tobytes() == alone[name].tobytes(), name
+    lengths = [load_record(name).samples.size
+               for name in ("elcentro1940_ns", "taft1952_ew_s69e")]
+    assert runner.records.size == sum(lengths)

@@ -247,18 +247,19 @@ def test_cli_bad_refine_exit_2_and_dry_run_counts(tmp_path):
 def test_interrupted_run_resumes_to_the_same_dataset(tmp_path, monkeypatch, capsys):
     study = write_study(tmp_path / "theta.yaml", THETA)
     monkeypatch.chdir(tmp_path)
-    calls, original = [], sweep.runner.cells.run_chunk
+    runner = sweep.runner.cells.ChunkRunner
+    calls, original = [], runner.__call__
 
-    def dies_in_round_2(study, cells, **options):  # 25 coarse cells, 3 midpoints in round 1
+    def dies_in_round_2(self, study, cells):  # 25 coarse cells, 3 midpoints in round 1
         calls.append(len(cells))
         if len(calls) == 30:
             raise KeyboardInterrupt
-        return original(study, cells, **options)
+        return original(self, study, cells)
 
-    monkeypatch.setattr(sweep.runner.cells, "run_chunk", dies_in_round_2)
+    monkeypatch.setattr(runner, "__call__", dies_in_round_2)
     assert main([str(study), "--chunk-size", "1", "--quiet"]) == 130  # Ctrl-C
     assert "interrupted: the finished rounds and chunks are saved" in capsys.readouterr().err
-    monkeypatch.setattr(sweep.runner.cells, "run_chunk", original)
+    monkeypatch.setattr(runner, "__call__", original)
     parts = store.parts_dir(tmp_path / "theta.nc")
     assert [len(store.PartStore(store.round_dir(parts, k)).parts()) for k in range(3)] == \
         [25, 3, 1]
