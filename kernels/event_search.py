@@ -5,8 +5,10 @@ Each event function is tested at the step's end or, when the step holds a turnin
 (omega or a vertical velocity changes sign), at a third, two thirds and the end: an event
 function that dips below zero and back inside one step is then still seen if the dip spans
 a third of it; without a turning point theta and the gaps are monotone in the step.  A sign
-change is located on the dense output by Brent's method; a function that entered the step
-at zero (a corner that has just left the floor) is first searched for a positive peak.
+change is located on the dense output by Brent's method.  A function that entered the step
+at zero (a corner that has just left the floor) is located as the root of g(x)/x, which
+has the same roots and is positive from the start where g rises; one that has not risen
+at x = RISE_X of the sample (it left with zero rate) is first searched for a positive peak.
 ``polish`` puts the located event on its root with the step's own accuracy.
 """
 from ._jit import jit
@@ -15,7 +17,7 @@ from .events import event_value, event_values, n_events
 from .integrate import dense
 from .motion import to_full
 from .roots import brent, peak_above_zero
-from .tolerances import EVENT_XTOL, PEAK_XTOL, POLISH_DELTA, POLISH_MAX
+from .tolerances import EVENT_XTOL, PEAK_XTOL, POLISH_DELTA, POLISH_MAX, RISE_X
 
 SAMPLES = (1.0 / 3.0, 2.0 / 3.0, 1.0)     # step fractions tested when it holds a turn
 END_ONLY = (1.0, 1.0, 1.0)                # ... and when it does not
@@ -31,8 +33,30 @@ def _value_at(x, args):
     return event_value(k, step.mode, step.t + x * step.dt, q, ctx, scene, rec, g)
 
 
+@jit(inline="always")
+def _slope_at(x, args):
+    """Event function k at the fraction x divided by x: for a function that entered the
+    step at zero, positive from the start while it rises, with the same roots after it."""
+    return _value_at(x, args) / x
+
+
 _locate = brent(_value_at)
+_locate_rising = brent(_slope_at)
 _peak = peak_above_zero(_value_at)
+
+
+@jit(inline="always")
+def _root_after_zero(args, xs, gs):
+    """The first root in (0, xs] of event function k that entered the step at zero and is
+    gs <= 0 at xs; 0 if it never rises above zero."""
+    xl = RISE_X * xs
+    hl = _slope_at(xl, args)
+    if hl > 0.0:
+        return _locate_rising(args, xl, xs, hl, gs / xs, EVENT_XTOL)
+    xl, gl = _peak(args, 0.0, xs, PEAK_XTOL)      # not risen yet: it left with zero rate
+    if gl > 0.0:
+        return _locate(args, xl, xs, gl, gs, EVENT_XTOL)
+    return 0.0                                    # it left zero the wrong way: the event is now
 
 
 @jit(inline="always")
@@ -61,13 +85,10 @@ def first_event(step, ctx, scene, rec, values, scratch):
             if g_new[k] > 0.0:
                 continue
             args = (k, step, ctx, scene, rec, z_x, q_x, g_x)
-            xl, gl = xa, g_last[k]
-            if gl <= 0.0:            # entered the step at zero: did it rise and come back?
-                xl, gl = _peak(args, xa, xs, PEAK_XTOL)
-            if gl > 0.0:
-                xr = _locate(args, xl, xs, gl, g_new[k], EVENT_XTOL)
-            else:
-                xr = xa              # it left zero the wrong way: the event is now
+            if g_last[k] > 0.0:
+                xr = _locate(args, xa, xs, g_last[k], g_new[k], EVENT_XTOL)
+            else:                    # entered the step at zero (so xa = 0)
+                xr = _root_after_zero(args, xs, g_new[k])
             if xr < x_e:
                 x_e = xr
                 k_e = k

@@ -15,6 +15,8 @@ MAX_TURN_ITER = 50
 # --- events on a step (``event_search``) ------------------------------------------------
 POLISH_DELTA = 1e-7       # Newton polish of an event: difference step, fraction of the step
 POLISH_MAX = 0.01         # ... whose correction is taken only when smaller than this fraction
+RISE_X = 1e-6             # an event that entered a step at zero: fraction of the sample where
+                          # its rise is first tested
 
 # --- time and steps (``driver``, ``rest_skipping``) -----------------------------------------
 BREAK_GUARD = 1e-12       # the floor is read this long [s] before a break (its left-hand value)
