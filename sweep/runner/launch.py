@@ -33,7 +33,8 @@ from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
 from .progress import Progress
-from .summary import dry_run, refine_summary, refine_text, say, shape_text, summary
+from .summary import (SUMMARY_VARIABLES, dry_run, refine_summary, refine_text, say, shape_text,
+                      summary)
 
 # What rank 0 hands every rank (mpi.distribute)
 Stop = namedtuple("Stop", "refused")
@@ -253,7 +254,9 @@ def _compute(comm, study, options, rounds=None):
     """Every cell of ``study`` on the ranks: one round, or a refine study's rounds.
 
     ``rounds`` is rank 0's :class:`_Rounds`.  Returns, on rank 0, the arrays of every cell
-    (``cf.to_dataset``) or a refine study's ``refine.Brackets``; None on the other ranks.
+    (``cf.to_dataset``: a dict in memory, or ``merged.MergedParts`` reading the part files a
+    group of variables at a time) or a refine study's ``refine.Brackets``; None on the other
+    ranks.
     """
     if comm.Get_rank() != 0:
         _follow(comm, study, options)
@@ -415,12 +418,14 @@ def _run(comm, path, options, state):
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
     result = _compute(comm, study, options, rounds)
     if rank == 0:
-        _write(_dataset(study, result, options.command_line(size)), study, plan.stamp, parts)
+        ds = _dataset(study, result, options.command_line(size))
+        said = result if study.refine else result.read(SUMMARY_VARIABLES)  # before the parts go
+        _write(ds, study, plan.stamp, parts)
         wall = time.perf_counter() - t_start
         if study.refine:
-            refine_summary(study, result, wall, rounds.stats, options.quiet, size)
+            refine_summary(study, said, wall, rounds.stats, options.quiet, size)
         else:
-            summary(study, result, wall, rounds.stats, options.quiet, size)
+            summary(study, said, wall, rounds.stats, options.quiet, size)
     mpi.barrier(comm)
 
 

@@ -26,6 +26,7 @@ import numpy as np
 from .. import cf
 from ..io.files import TMP_MARK, replacing, write_atomic
 from . import fingerprint
+from .merged import MergedParts
 from .mpi import JobFailure
 
 MANIFEST = "manifest.json"
@@ -170,23 +171,31 @@ class PartStore:
         write_atomic(self.directory / name, lambda f: np.savez(f, **stamped))
         return self.directory / name
 
-    def _load(self, path, n_cells):
-        """A part's arrays, checked against the manifest: its fingerprint and its cell ids."""
+    def _cells(self, path, n_cells):
+        """A part's cell ids, checked against the manifest: its fingerprint and its cells."""
         with np.load(path, allow_pickle=False) as npz:
-            part = {key: npz[key] for key in npz.files}
-        if str(part.get("fingerprint", "")) != self.stamp:
+            stamp = str(npz["fingerprint"]) if "fingerprint" in npz.files else ""
+            cell = np.asarray(npz["cell"], dtype=np.int64)
+        if stamp != self.stamp:
             raise StoreError(f"{path} was computed from other inputs than {MANIFEST} states; "
                              "nothing was merged. Run again with --force to compute every "
                              "cell again")
-        cell = part["cell"]
         if cell.size and (cell.min() < 0 or cell.max() >= n_cells):
             raise StoreError(f"{path} holds cells outside 0 .. {n_cells - 1}; nothing was merged")
-        return part
+        return cell
+
+    def index(self, n_cells):
+        """Every part file with the cell ids it holds, each checked against the manifest and
+        together covering all ``n_cells`` cells (else :class:`StoreError`)."""
+        index = [(path, self._cells(path, n_cells)) for path in self.parts()]
+        _check_covered([cell for _, cell in index], n_cells)
+        return index
 
     def merge(self, n_cells):
-        """Every cell's arrays from the part files, in cell order (see :func:`merge`); every
-        part is checked against the manifest first."""
-        return merge([self._load(p, n_cells) for p in self.parts()], n_cells)
+        """Every cell's arrays from the part files, in cell order, read a group of variables
+        at a time (``merged.MergedParts``); every part is checked against the manifest
+        first."""
+        return MergedParts(self.index(n_cells), n_cells)
 
     def remove(self):
         """Delete the parts folder (after the dataset is written)."""
@@ -218,16 +227,23 @@ def merge(parts, n_cells):
         When some cells are covered by no part.
     """
     out = {name: cf.empty(name, n_cells) for name in cf.VARIABLES}
-    seen = np.zeros(n_cells, dtype=bool)
+    cells = []
     for part in parts:
-        cell = np.asarray(part["cell"], dtype=np.int64)
-        seen[cell] = True
+        cells.append(np.asarray(part["cell"], dtype=np.int64))
         for name in cf.VARIABLES:
-            out[name][cell] = part[name]
+            out[name][cells[-1]] = part[name]
+    _check_covered(cells, n_cells)
+    return out
+
+
+def _check_covered(cells, n_cells):
+    """:class:`StoreError` when the arrays of cell ids ``cells`` leave some cells out."""
+    seen = np.zeros(n_cells, dtype=bool)
+    for cell in cells:
+        seen[cell] = True
     if not seen.all():
         missing = np.flatnonzero(~seen)
         raise StoreError(f"{missing.size} cells have no results (first: {missing[:5].tolist()})")
-    return out
 
 
 def check_output(path, force):
