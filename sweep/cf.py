@@ -267,9 +267,8 @@ def to_dataset(study, arrays, *, history=None):
     Parameters
     ----------
     study : Study
-    arrays : dict of str to ndarray, shape (n_cells, ...), or runner.merged.MergedParts
-        Every variable of ``VARIABLES`` (see ``cells.run_chunk``); a ``MergedParts`` gives
-        lazy arrays, read from its part files as the Dataset is written.
+    arrays : dict of str to ndarray, shape (n_cells, ...)
+        Every variable of ``VARIABLES`` (see ``cells.run_chunk``).
     history : str, optional
         The command for the ``history`` attribute.
 
@@ -288,16 +287,9 @@ def to_dataset(study, arrays, *, history=None):
     for name, var in VARIABLES.items():
         if name in coords:  # e.g. a pga axis: its coordinate is the cells' PGA
             continue
-        data[name] = (dims + var.dims, _shaped(arrays, name, shape), variable_attrs(name))
+        a = np.asarray(arrays[name], dtype=var.dtype)
+        data[name] = (dims + var.dims, a.reshape(shape + a.shape[1:]), variable_attrs(name))
     return xr.Dataset(data, coords=coords, attrs=global_attrs(study, history))
-
-
-def _shaped(arrays, name, shape):
-    """Variable ``name`` of ``arrays`` (see :func:`to_dataset`) on the study's ``shape``."""
-    if hasattr(arrays, "lazy"):
-        return arrays.lazy(name, shape)
-    a = np.asarray(arrays[name], dtype=VARIABLES[name].dtype)
-    return a.reshape(shape + a.shape[1:])
 
 
 def dataset_names(study):

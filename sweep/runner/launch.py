@@ -277,10 +277,17 @@ def _dataset(study, result, history):
     return cf.to_dataset(study, result, history=history)
 
 
-def _write(ds, study, stamp, parts):
-    """The dataset, stamped with its inputs' fingerprint, then the parts removed."""
-    ds.attrs[store.FINGERPRINT_ATTR] = stamp
-    store.write_netcdf(ds, study.output)
+def _write(study, result, history, stamp, parts):
+    """The dataset of :func:`_compute`'s result, stamped with its inputs' fingerprint, then
+    the parts removed.  A grid study's is written from its part files a group of variables at
+    a time (``store.write_merged``); a refine study's boundaries are few, in memory."""
+    stamped = {store.FINGERPRINT_ATTR: stamp}
+    if study.refine:
+        ds = _dataset(study, result, history)
+        ds.attrs.update(stamped)
+        store.write_netcdf(ds, study.output)
+    else:
+        store.write_merged(study, result, study.output, history=history, attrs=stamped)
     parts.remove()
 
 
@@ -418,9 +425,8 @@ def _run(comm, path, options, state):
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
     result = _compute(comm, study, options, rounds)
     if rank == 0:
-        ds = _dataset(study, result, options.command_line(size))
-        said = result if study.refine else result.read(SUMMARY_VARIABLES)  # before the parts go
-        _write(ds, study, plan.stamp, parts)
+        said = result if study.refine else result.read(SUMMARY_VARIABLES)  # parts go in _write
+        _write(study, result, options.command_line(size), plan.stamp, parts)
         wall = time.perf_counter() - t_start
         if study.refine:
             refine_summary(study, said, wall, rounds.stats, options.quiet, size)

@@ -3,12 +3,10 @@
 Rank 0 never holds every variable of every cell at once: the variables of ``cf.VARIABLES``
 are cut, in their order, into groups whose full arrays for all cells fit in ``BUDGET``
 (:func:`groups`), and :class:`MergedParts` reads a group by opening each part file and
-reading only that group's keys (an ``.npz`` reads its arrays one by one).  It holds one group
-at a time; the dataset of a study (``cf.to_dataset``) takes its variables as lazy arrays
-(:meth:`MergedParts.lazy`) that xarray loads one by one as it writes them, so writing the
-netCDF file needs one group's arrays, the same file as from arrays in memory.
+reading only that group's keys (an ``.npz`` reads its arrays one by one).
+``store.write_merged`` writes the dataset a group at a time; :func:`placeholder` stands for
+a variable not yet read.
 """
-import functools
 from collections.abc import Mapping
 
 import numpy as np
@@ -50,13 +48,13 @@ class MergedParts(Mapping):
         Each part file and the cell ids it holds (``store.PartStore.index``), together
         covering every cell.
     n_cells : int
-    budget : int
-        Bytes of one group's arrays (:func:`groups`).
+    budget : int, optional
+        Bytes of one group's arrays (:func:`groups`); default ``BUDGET``.
     """
 
-    def __init__(self, index, n_cells, budget=BUDGET):
+    def __init__(self, index, n_cells, budget=None):
         self.index, self.n_cells = index, n_cells
-        self.groups = groups(n_cells, budget)
+        self.groups = groups(n_cells, BUDGET if budget is None else budget)
         self._held = {}
 
     def read(self, names):
@@ -81,34 +79,9 @@ class MergedParts(Mapping):
     def __len__(self):
         return len(cf.VARIABLES)
 
-    def lazy(self, name, shape):
-        """Variable ``name`` on the study's ``shape`` as an xarray lazy array, read when
-        xarray loads it."""
-        from xarray.core.indexing import LazilyIndexedArray
 
-        return LazilyIndexedArray(_cells_array_class()(self, name, shape))
-
-
-@functools.cache
-def _cells_array_class():
-    """:class:`CellsArray`, defined when first needed (xarray is imported only then)."""
-    from xarray.backends.common import BackendArray
-    from xarray.core import indexing
-
-    class CellsArray(BackendArray):
-        """One variable of a :class:`MergedParts`, reshaped to the study's dimensions."""
-
-        def __init__(self, merged, name, shape):
-            self.merged, self.name = merged, name
-            self.dtype = np.dtype(cf.VARIABLES[name].dtype)
-            self.shape = tuple(shape) + cf.empty(name, 0).shape[1:]
-
-        def __getitem__(self, key):
-            return indexing.explicit_indexing_adapter(key, self.shape,
-                                                      indexing.IndexingSupport.BASIC,
-                                                      self._raw)
-
-        def _raw(self, key):
-            return self.merged[self.name].reshape(self.shape)[key]
-
-    return CellsArray
+def placeholder(name, n_cells):
+    """An array of ``n_cells`` cells of variable ``name`` that takes no memory: every cell
+    the value of ``cf.empty``, a broadcast view of one cell."""
+    one = cf.empty(name, 1)
+    return np.broadcast_to(one, (n_cells, *one.shape[1:]))

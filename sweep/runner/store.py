@@ -19,6 +19,7 @@ import json
 import os
 import shutil
 import zipfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +27,7 @@ import numpy as np
 from .. import cf
 from ..io.files import TMP_MARK, replacing, write_atomic
 from . import fingerprint
-from .merged import MergedParts
+from .merged import MergedParts, placeholder
 from .mpi import JobFailure
 
 MANIFEST = "manifest.json"
@@ -266,6 +267,67 @@ def finished_earlier(path, stamp):
             return getattr(nc, FINGERPRINT_ATTR, None) == stamp
     except (OSError, RuntimeError, ValueError):
         return False
+
+
+def write_merged(study, merged, path, *, history=None, attrs=None):
+    """Write the dataset of a study (``cf.to_dataset``) from its part files to ``path``
+    atomically, holding one group of variables at a time.
+
+    xarray writes the whole file, its first group of variables read (``merged.groups``) and
+    the others as placeholders (``merged.placeholder``): the file's variables, order, encoding
+    and attributes are those of :func:`write_netcdf`.  netCDF4 then writes each other group
+    into its variables, read one group at a time.
+
+    Parameters
+    ----------
+    study : Study
+    merged : merged.MergedParts
+    path : str or Path
+    history : str, optional
+        The command for the ``history`` attribute.
+    attrs : dict, optional
+        Global attributes added to the dataset's.
+    """
+    import netCDF4
+
+    with replacing(path) as tmp, _no_chunk_cache():
+        written = _write_first(study, merged, tmp, history, attrs or {})
+        with netCDF4.Dataset(tmp, "a") as nc:
+            for group in merged.groups[1:]:
+                _fill(nc, merged.read([name for name in group if name in written]))
+    return Path(path)
+
+
+@contextmanager
+def _no_chunk_cache():
+    """No chunk cache for the netCDF files opened in the block: netCDF-C keeps up to 64 MiB
+    of each variable's chunks until its file is closed, every variable written in full."""
+    import netCDF4
+
+    before = netCDF4.get_chunk_cache()
+    netCDF4.set_chunk_cache(0, 0, 1.0)
+    try:
+        yield
+    finally:
+        netCDF4.set_chunk_cache(*before)
+
+
+def _write_first(study, merged, tmp, history, attrs):
+    """Write the dataset with the first group of variables read and placeholders for the
+    others; returns the names of its data variables (an axis's own result is a coordinate)."""
+    first = merged.read(merged.groups[0])
+    arrays = {name: first[name] if name in first else placeholder(name, merged.n_cells)
+              for name in cf.VARIABLES}
+    ds = cf.to_dataset(study, arrays, history=history)
+    ds.attrs.update(attrs)
+    ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=cf.encoding(ds))
+    return set(ds.data_vars)
+
+
+def _fill(nc, arrays):
+    """Write per-cell arrays into the variables of an open netCDF4 Dataset."""
+    for name, a in arrays.items():
+        nc[name][...] = a.reshape(nc[name].shape)
 
 
 def write_netcdf(ds, path):
