@@ -8,7 +8,9 @@ ids it covers, so a run resumes from whatever parts exist with any chunk size an
 study, the content of its record files, the program) and every part carries it too: parts of
 other inputs are refused with what changed, and a part that disagrees with the manifest stops
 the merge, never a mixed dataset.  A refine study keeps the parts of each round in a folder of
-its own (``round-000/``, ``round-001/``, ...).  The dataset is written to a temporary file in
+its own (``round-000/``, ``round-001/``, ...).  The merge reads the parts a group of
+variables at a time (``runner.merged``), and :func:`write_merged` writes a study's dataset one
+group after the other.  The dataset is written to a temporary file in
 the output's folder and renamed, so a reader never sees half a file; it carries the
 fingerprint as its ``input_fingerprint`` attribute, so that a run killed after writing it
 finishes its clean-up when started again.  A parts folder is removed by renaming it first
