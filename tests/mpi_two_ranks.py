@@ -2,12 +2,18 @@
 
     mpiexec -n 2 python tests/mpi_two_ranks.py run STUDY OUT_DIR   # two runs: chunks of 3, 7
     mpiexec -n 2 python tests/mpi_two_ranks.py abort               # rank 1 raises
+    mpiexec -n 2 python tests/mpi_two_ranks.py deal OUT_DIR        # rank 1 three times slower
 
 ``run`` writes OUT_DIR/chunk3.nc and OUT_DIR/chunk7.nc with ``sweep.run.main`` (both runs in
 one job, which saves a start-up); ``abort`` raises on rank 1 while rank 0 waits in a barrier
-that rank 1 never reaches: only ``abort_on_exception`` ends the job.
+that rank 1 never reaches: only ``abort_on_exception`` ends the job.  ``deal`` runs
+``mpi.work`` over 120 one-cell chunks whose cells take 10 ms on rank 0 and 30 ms on rank 1
+(a sleep, which releases the GIL as the kernel does) into part files in OUT_DIR, and prints
+each rank's cells and the end of its last chunk as JSON.
 """
+import json
 import sys
+import time
 from pathlib import Path
 
 # Python puts this script's folder first on sys.path, where tests/sweep (no __init__.py) would
@@ -15,7 +21,9 @@ from pathlib import Path
 _HERE = Path(__file__).resolve().parent
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != _HERE]
 
-from sweep.runner import mpi  # noqa: E402
+import numpy as np  # noqa: E402
+
+from sweep.runner import grid, mpi, store  # noqa: E402
 from sweep.run import main  # noqa: E402
 
 
@@ -38,5 +46,23 @@ def abort():
     return 0
 
 
+def deal(out_dir):
+    comm = mpi.world()
+    rank = comm.Get_rank()
+
+    def run_chunk(study, cells):
+        time.sleep((0.010, 0.030)[rank] * len(cells))
+        return {"cell": np.asarray(cells), "status": np.zeros(len(cells), np.int8)}
+
+    with mpi.abort_on_exception(comm):
+        parts = store.PartStore(out_dir, stamp="deal")
+        _, stats = mpi.work(comm, None, grid.Chunks(np.arange(120)[::-1], 1), store=parts,
+                            run_chunk=run_chunk)
+        if rank == 0:
+            print(json.dumps({r: [s.cells, s.ended] for r, s in stats.items()}))
+    return 0
+
+
 if __name__ == "__main__":
-    sys.exit(run(*sys.argv[2:4]) if sys.argv[1] == "run" else abort())
+    sys.exit({"run": lambda: run(*sys.argv[2:4]), "abort": abort,
+              "deal": lambda: deal(sys.argv[2])}[sys.argv[1]]())

@@ -18,18 +18,19 @@ from ..io.scene_schema import load_scene, resolve_scene
 
 # Grids up to CHECK_ALL_CELLS cells have every cell's scene checked; larger ones, each value of
 # every dimension (at most CHECKED_PER_DIM of them: both ends and a seeded sample) with the other
-# dimensions at their first value, and SAMPLED_CELLS seeded random cells (see _checked_cells).
+# dimensions at their first value, and SAMPLED_CELLS seeded random cells (see checked_cells).
 CHECK_ALL_CELLS = 10_000
 CHECKED_PER_DIM = 1_000
 SAMPLED_CELLS = 1_000
 _INDEX = re.compile(r"\[\d+\]$")  # the index of an axis value in a path: grid.B[3]
 
 
-def load_study(source, *, check_cells=True, **options):
+def load_study(source, *, check_cells=True, cells=None, **options):
     """``io.study_schema.load_study(source, **options)``, with every cell's scene checked
-    (:func:`cell_problems`) unless ``check_cells`` is false."""
-    return study_schema.load_study(source, cells=cell_problems if check_cells else None,
-                                   **options)
+    (:func:`cell_problems`, or ``cells`` with its signature) unless ``check_cells`` is
+    false."""
+    return study_schema.load_study(source, cells=(cells or cell_problems) if check_cells
+                                   else None, **options)
 
 
 def _blame(study, path):
@@ -41,7 +42,7 @@ def _blame(study, path):
     return None
 
 
-def _checked_cells(study, seed=study_grid.DEFAULT_SEED):
+def checked_cells(study, seed=study_grid.DEFAULT_SEED):
     """The cells whose scenes :func:`cell_problems` checks, a bounded number.
 
     Every cell of a grid of up to ``CHECK_ALL_CELLS``.  Of a larger grid: every value of each
@@ -82,7 +83,7 @@ def cell_problems(study, limit=50, doubts=None):
     """Problems of the cells' scenes, once per axis value (or once for the base scene).
 
     Each checked cell's scene (every cell of a small grid, a bounded choice of a large one:
-    :func:`_checked_cells`) is checked, resolved and packed into a kernel row, as the run will.
+    :func:`checked_cells`) is checked, resolved and packed into a kernel row, as the run will.
 
     Parameters
     ----------
@@ -99,29 +100,63 @@ def cell_problems(study, limit=50, doubts=None):
     list of Problem
         Paths ``grid.<axis>[i]`` (the i-th value of an axis) or ``scene.<path>``.
     """
-    found, seen = [], set()
-    doubted = {}  # path without the value's index -> (its first doubt, paths of its values)
-    for index in _checked_cells(study):
+    picks = list(enumerate(checked_cells(study)))
+    return combined(findings(study, picks, limit, doubts is not None), limit, doubts)
+
+
+def _key(problem):
+    return problem.path, repr(problem.value), problem.message
+
+
+def findings(study, picks, limit=50, with_doubts=True):
+    """What the checks of some cells found: ``(position, problems, doubts)`` for each
+    ``(position, cell)`` of ``picks`` (positions in :func:`checked_cells`), in their order,
+    up to the cell that brings the distinct problems found to ``limit`` (no cell after it
+    can be among the first ``limit`` problems of all cells: :func:`combined`)."""
+    out, seen = [], set()
+    for position, index in picks:
         try:
             scene = load_scene(study_grid.cell_scene(study, index), base_dir=study.base_dir)
             resolved = resolve_scene(scene)
         except FileProblems as err:
-            for problem in (_located(study, index, p) for p in err.problems):
-                key = (problem.path, repr(problem.value), problem.message)
-                if key not in seen:
-                    seen.add(key)
-                    found.append(problem)
-            if len(found) >= limit:
+            problems = [_located(study, index, p) for p in err.problems]
+            out.append((position, problems, ()))
+            seen.update(map(_key, problems))
+            if len(seen) >= limit:
                 break
             continue
-        for doubt in scene_doubts(scene, resolved) if doubts is not None else ():
-            axis = _blame(study, doubt.path)
-            if axis is not None and axis.name in vocabulary.COMPUTED:
-                continue  # a value computed in metres, not a bare number written
-            if isinstance(doubt, ReadsAsG) and axis is not None and \
-                    levels_read_in_si(axis.values):
-                continue  # bare numbers of 2 and more: the axis is written in m/s^2
-            doubt = _located(study, index, doubt)
+        out.append((position, (), _doubts(study, index, scene, resolved) if with_doubts
+                    else ()))
+    return out
+
+
+def _doubts(study, index, scene, resolved):
+    """The values of a right cell's scene likely not meant, at their axis values."""
+    out = []
+    for doubt in scene_doubts(scene, resolved):
+        axis = _blame(study, doubt.path)
+        if axis is not None and axis.name in vocabulary.COMPUTED:
+            continue  # a value computed in metres, not a bare number written
+        if isinstance(doubt, ReadsAsG) and axis is not None and levels_read_in_si(axis.values):
+            continue  # bare numbers of 2 and more: the axis is written in m/s^2
+        out.append(_located(study, index, doubt))
+    return out
+
+
+def combined(found_in_cells, limit=50, doubts=None):
+    """The problems of :func:`cell_problems` from :func:`findings` in the order of the
+    checked cells (those of several ranks put together): each problem once, the first
+    ``limit`` (whole cells); the doubts put in ``doubts``, once per axis."""
+    found, seen = [], set()
+    doubted = {}  # path without the value's index -> (its first doubt, paths of its values)
+    for _, problems, cell_doubts in found_in_cells:
+        for problem in problems:
+            if _key(problem) not in seen:
+                seen.add(_key(problem))
+                found.append(problem)
+        if problems and len(found) >= limit:
+            break
+        for doubt in cell_doubts:
             doubted.setdefault(_INDEX.sub("", doubt.path), (doubt, set()))[1].add(doubt.path)
     for path, (doubt, paths) in doubted.items():
         more = len(paths) - 1

@@ -10,7 +10,8 @@ resolve with the cell's own body.
 The study's words (``AXES``, ``COMPUTED``, ``FIELD_DIMENSIONS``, ...: ``sweep.io.vocabulary``)
 and its cells (``shape``, ``cell_scene``, ``sample``, ...: ``sweep.io.study_grid``) are defined
 in ``io``, where the study schema checks them, and imported here under the same names; this
-module adds what a run does with the cells: the seeded shuffle, chunks and dealing to ranks.
+module adds what a run does with the cells: the seeded shuffle and the chunks that the ranks
+take one at a time (``runner.mpi``).
 """
 import math
 
@@ -27,7 +28,7 @@ MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seco
 CHUNKS_PER_RANK = 16  # default chunk size aims at this many chunks per rank (balance, resume)
 
 
-# --- chunks and dealing ---------------------------------------------------------------------
+# --- chunks ---------------------------------------------------------------------
 
 def shuffled(n, seed=DEFAULT_SEED):
     """The cells 0 .. n-1 in a seeded random order (a permutation, the same for any rank count).
@@ -43,21 +44,32 @@ def default_chunk_size(n, size):
     return max(1, min(MAX_CHUNK, math.ceil(n / (CHUNKS_PER_RANK * max(1, size)))))
 
 
-def chunks(order, chunk_size):
-    """Cut an order of cells into consecutive chunks, each sorted by cell id."""
-    if chunk_size < 1:
-        raise ValueError(f"`chunk_size` must be >= 1, got {chunk_size}")
-    order = np.asarray(order, dtype=np.int64)
-    return [np.sort(order[i:i + chunk_size]) for i in range(0, order.size, chunk_size)]
+class Chunks:
+    """The chunks of one round: an order of cells cut into consecutive pieces of
+    ``chunk_size``, each sorted by cell id; chunk k is ``chunks[k]``.  Every rank holds the same
+    order, so a chunk is named by its index alone (``runner.mpi.Dealer``)."""
+
+    def __init__(self, order, chunk_size):
+        if chunk_size < 1:
+            raise ValueError(f"`chunk_size` must be >= 1, got {chunk_size}")
+        self.order = np.asarray(order, dtype=np.int64)
+        self.chunk_size = int(chunk_size)
+
+    def __len__(self):
+        return -(-self.order.size // self.chunk_size)
+
+    def __getitem__(self, k):
+        if not 0 <= k < len(self):
+            raise IndexError(k)
+        return np.sort(self.order[k * self.chunk_size:(k + 1) * self.chunk_size])
+
+    @property
+    def n_cells(self):
+        return self.order.size
 
 
-def deal(chunk_list, size):
-    """Chunks dealt round-robin to ``size`` ranks: a list of ``size`` lists of chunks."""
-    return [chunk_list[rank::size] for rank in range(size)]
-
-
-def plan(n, done, chunk_size, size, seed=DEFAULT_SEED):
-    """Chunks of the cells not yet ``done``, in seeded shuffled order, dealt to ``size`` ranks.
+def plan(n, done, chunk_size, seed=DEFAULT_SEED):
+    """The :class:`Chunks` of the cells not yet ``done``, in seeded shuffled order.
 
     Parameters
     ----------
@@ -65,15 +77,10 @@ def plan(n, done, chunk_size, size, seed=DEFAULT_SEED):
         Number of cells.
     done : ndarray of int
         Cells already computed (from part files); left out.
-    chunk_size, size, seed : int
-        Cells per chunk, number of ranks, shuffle seed.
-
-    Returns
-    -------
-    list of ``size`` lists of ndarray
-        The chunks of each rank.
+    chunk_size, seed : int
+        Cells per chunk, shuffle seed.
     """
     order = shuffled(n, seed)
     if len(done):
         order = order[~np.isin(order, np.asarray(done, dtype=np.int64))]
-    return deal(chunks(order, chunk_size), size)
+    return Chunks(order, chunk_size)

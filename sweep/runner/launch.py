@@ -28,13 +28,13 @@ from ..io import study_schema
 from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
-from . import fingerprint, grid, mpi, refine, store
+from . import fingerprint, grid, mpi, rank_checks, refine, store
 from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
 from .progress import Progress
-from .summary import (SUMMARY_VARIABLES, dry_run, refine_summary, refine_text, say, shape_text,
-                      summary)
+from .summary import (SUMMARY_VARIABLES, Timeline, dry_run, refine_summary, refine_text, say,
+                      shape_text, summary)
 
 # What rank 0 hands every rank (mpi.distribute)
 Stop = namedtuple("Stop", "refused")
@@ -46,13 +46,14 @@ Start.__doc__ = """A run: the study (its file's ``text`` and ``source``, its ``o
 folder of its ``parts`` and the fingerprint ``stamp`` of its inputs."""
 
 Round = namedtuple("Round", "study parts stamp chunks")
-Round.__doc__ = """The cells of one round dealt to a rank: ``study`` (None: the run's own study;
-else a refine round's point study), the ``parts`` folder and ``stamp`` its part files are
-written with, and the rank's ``chunks`` of cell ids.  None instead of a Round ends the rounds."""
+Round.__doc__ = """The cells of one round, sent to every rank: ``study`` (None: the run's own
+study; else a refine round's point study), the ``parts`` folder and ``stamp`` its part files
+are written with, and the round's ``chunks`` (``grid.Chunks``), which rank 0 deals one at a
+time (``mpi.Dealer``).  None instead of a Round ends the rounds."""
 
-Deal = namedtuple("Deal", "done chunk_size chunks")
-Deal.__doc__ = """Rank 0's dealing of a round: the cells ``done`` by an earlier run, the
-``chunk_size`` and the ``chunks`` of every rank (``grid.plan``)."""
+Deal = namedtuple("Deal", "done chunks")
+Deal.__doc__ = """Rank 0's plan of a round: the cells ``done`` by an earlier run and the
+``chunks`` of the others (``grid.plan``)."""
 
 
 class Refused(Exception):
@@ -68,9 +69,11 @@ def _problems(path, err):
         say(f"  {line}", file=sys.stderr)
 
 
-def _load(path, options):
-    """The checked study and its writable output, or :class:`FileProblems`."""
-    study = load_study(path, output=options.output, max_cells=options.max_cells)
+def _load(comm, path, options):
+    """The checked study and its writable output, or :class:`FileProblems`; the cells'
+    checks shared by the ranks (``rank_checks``)."""
+    study = load_study(path, output=options.output, max_cells=options.max_cells,
+                       cells=rank_checks.shared(comm) if comm.Get_size() > 1 else None)
     why = output_problem(study.output)
     if why is not None:
         raise FileProblems([Problem("output" if options.output is None else "-o/--output",
@@ -116,7 +119,7 @@ def _open(study, options, parts):
 def _deal(n, done, options, size):
     """The :class:`Deal` of ``n`` cells less those ``done`` to ``size`` ranks."""
     chunk_size = options.chunk_size or grid.default_chunk_size(n - len(done), size)
-    return Deal(done, chunk_size, grid.plan(n, done, chunk_size, size, options.seed))
+    return Deal(done, grid.plan(n, done, chunk_size, options.seed))
 
 
 def _plan(comm, path, options):
@@ -128,7 +131,7 @@ def _plan(comm, path, options):
     """
     size = comm.Get_size()
     try:
-        study = _load(path, options)
+        study = _load(comm, path, options)
     except FileProblems as err:
         _problems(path, err)
         return [Stop(refused=True)] * size, None, None, None
@@ -144,7 +147,6 @@ def _plan(comm, path, options):
         return [Stop(refused=True)] * size, None, None, None
     if lock is None:
         return [Stop(refused=False)] * size, None, None, None
-    from .cells import warm_up
     start = Start(study.text, study.source, str(study.output), str(parts.directory), parts.stamp)
     ranks = f"{size} rank{'s' if size > 1 else ''}"
     first = None
@@ -156,23 +158,27 @@ def _plan(comm, path, options):
         first = _deal(n, parts.done_cells(), options, size)
         if not options.quiet:
             say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {ranks}, chunks "
-                f"of {first.chunk_size}", file=sys.stderr)
+                f"of {first.chunks.chunk_size}", file=sys.stderr)
             if len(first.done):
                 say(f"sweep.run: resuming: {len(first.done)} cells already done in "
                     f"{parts.directory}", file=sys.stderr)
-    warm_up()  # rank 0 compiles (or loads the cache) before the others start
     return [start] * size, study, lock, first
 
 
-def _import_xarray():
-    import xarray  # noqa: F401  (for the merge, while rank 0 waits for the others)
+def _load_rest():
+    """What rank 0 loads while the other ranks compute their first chunks: the kernel (when
+    it was compiled before the run) and xarray for the merge."""
+    from .cells import warm_up
+
+    warm_up()
+    import xarray  # noqa: F401
 
 
-def _watch(comm, options, dealt):
+def _watch(comm, options):
     """Rank 0's watch over the other ranks (none with one rank or ``--rank-timeout 0``)."""
     if comm.Get_size() == 1 or not options.rank_timeout:
         return None
-    return mpi.Watch(dealt, floor=options.rank_timeout)
+    return mpi.Watch(comm.Get_size(), floor=options.rank_timeout)
 
 
 def _chunk_runner(options):
@@ -202,6 +208,7 @@ class _Rounds:
     def __init__(self, comm, study, options, name, parts=None, first=None):
         self.comm, self.study, self.options, self.name = comm, study, options, name
         self.parts, self.first = parts, first
+        self.before = _load_rest  # once, before rank 0's first chunk
         self.stats = {}
 
     def _round_parts(self, index, study):
@@ -228,18 +235,27 @@ class _Rounds:
                     f"already done in {parts.directory}", file=sys.stderr)
         mpi.distribute(comm, [Round(None if study is self.study else study,
                                     None if parts is None else str(parts.directory), stamp,
-                                    chunks) for chunks in deal.chunks])
+                                    deal.chunks)] * size)
         progress = Progress(n, len(deal.done), quiet=options.quiet,
                             prefix=self.name if index is None else f"{self.name}: round {index}")
-        kept, stats = mpi.work(comm, study, deal.chunks[0], store=parts, progress=progress,
-                               run_chunk=_chunk_runner(options), on_idle=_import_xarray,
-                               watch=_watch(comm, options, deal.chunks))
+        before, self.before = self.before, None
+        kept, stats = mpi.work(comm, study, deal.chunks, store=parts, progress=progress,
+                               run_chunk=_chunk_runner(options), before=before,
+                               watch=_watch(comm, options))
         progress.close()
         for rank, done in stats.items():
-            before = self.stats.get(rank, mpi.RankDone(0, 0.0))
-            self.stats[rank] = mpi.RankDone(before.cells + done.cells,
-                                            before.seconds + done.seconds)
+            self.stats[rank] = _added(self.stats.get(rank), done)
         return store.merge(kept, n) if parts is None else parts.merge(n)
+
+
+def _added(total, done):
+    """Two :class:`mpi.RankDone` of one rank added up (``total`` may be None)."""
+    if total is None:
+        return done
+    times = [t for t in (total.started, done.started) if t is not None]
+    ends = [t for t in (total.ended, done.ended) if t is not None]
+    return mpi.RankDone(total.cells + done.cells, total.seconds + done.seconds,
+                        min(times, default=None), max(ends, default=None))
 
 
 def _follow(comm, study, options):
@@ -397,20 +413,25 @@ def _run_file(comm, path, options):
 
 def _run(comm, path, options, state):
     """The run itself, filling ``state``."""
+    from .cells import kernel_cached, warm_up
+
     rank, size = comm.Get_rank(), comm.Get_size()
-    t_start = time.perf_counter()
-    warm, first = False, None
+    t_start = time.time()
+    warm, first = kernel_cached(), None
     if rank == 0:
         plans, state.study, state.lock, first = _plan(comm, path, options)
+        if not warm and isinstance(plans[0], Start):
+            warm_up()  # rank 0 compiles before the others load the cache; else _load_rest
     else:  # while rank 0 checks the study: load the kernel if it is cached, else numba only
-        from .cells import kernel_cached, warm_up
-        warm = kernel_cached()
+        plans = None
         if warm:
             warm_up()
         else:
             import kernels.driver  # noqa: F401
-        plans = None
     plan = state.plan = mpi.distribute(comm, plans)
+    while isinstance(plan, rank_checks.Check):  # ranks other than 0: check cells first
+        state.study = rank_checks.check_share(comm, plan)
+        plan = state.plan = mpi.distribute(comm)
     if isinstance(plan, Stop):
         if plan.refused:
             raise Refused(path)
@@ -418,8 +439,8 @@ def _run(comm, path, options, state):
     if state.study is None:
         state.study = study_schema.load_study(plan.source, text=plan.text,
                                               output=plan.output, max_cells=None)
-        if not warm:
-            warm_up()  # loads what rank 0 compiled into the cache
+    if rank and not warm:
+        warm_up()  # loads what rank 0 compiled into the cache
     study = state.study
     parts = store.PartStore(plan.parts, plan.stamp)
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
@@ -427,11 +448,11 @@ def _run(comm, path, options, state):
     if rank == 0:
         said = result if study.refine else result.read(SUMMARY_VARIABLES)  # parts go in _write
         _write(study, result, options.command_line(size), plan.stamp, parts)
-        wall = time.perf_counter() - t_start
+        timeline = Timeline.of(t_start, rounds.stats, time.time())
         if study.refine:
-            refine_summary(study, said, wall, rounds.stats, options.quiet, size)
+            refine_summary(study, said, timeline, rounds.stats, options.quiet, size)
         else:
-            summary(study, said, wall, rounds.stats, options.quiet, size)
+            summary(study, said, timeline, rounds.stats, options.quiet, size)
     mpi.barrier(comm)
 
 

@@ -1,18 +1,23 @@
-"""Ranks: the communicator or a serial stand-in, dealing work, progress messages, aborting.
+"""Ranks: the communicator or a serial stand-in, dealing chunks, progress messages, aborting.
 
 The only module that imports mpi4py, and only when a launcher started the process (or
 ``SWEEP_MPI=1``): a plain ``python -m sweep.run`` never loads MPI, and a broken MPI install
-cannot break an import of ``sweep``.  Rank 0 computes too; the other ranks send it one small
-message per finished chunk (:class:`ChunkDone`) and one when they are done (:class:`RankDone`)
-with non-blocking sends, which it drains between its own chunks with ``Iprobe`` (no busy
-``recv``).  Every wait is a test-and-sleep loop, so an idle rank
-does not spin.  An exception on any rank prints its traceback and calls
-``COMM_WORLD.Abort``: the whole job ends within seconds instead of hanging.  Rank 0 watches the
-others (:class:`Watch`): a rank silent for longer than ``max(floor, WATCH_FACTOR x the slowest
-chunk so far)`` is stopped or stuck, and the job aborts naming it and the cells it held.
+cannot break an import of ``sweep``.  Chunks are dealt one at a time to whichever rank asks
+(dynamic self-scheduling, as OpenMP's ``schedule(dynamic)``): rank 0's :class:`Dealer`
+answers the other ranks' requests from a thread of its own while rank 0 computes its chunks
+too, so a rank that drew slow cells takes fewer chunks and every rank ends within about one
+chunk of the others.  The other ranks send rank 0 one small message per finished chunk
+(:class:`ChunkDone`) and one when they are done (:class:`RankDone`) with non-blocking sends,
+which it drains between its own chunks with ``Iprobe`` (no busy ``recv``).  Every wait is a
+test-and-sleep loop, so an idle rank does not spin.  An exception on any rank prints its
+traceback and calls ``COMM_WORLD.Abort``: the whole job ends within seconds instead of
+hanging.  Rank 0 watches the others (:class:`Watch`): a rank silent for longer than
+``max(floor, WATCH_FACTOR x the slowest chunk so far)`` is stopped or stuck, and the job aborts
+naming it and the cells it held.
 """
 import os
 import sys
+import threading
 import time
 import traceback
 from collections import namedtuple
@@ -23,8 +28,9 @@ import numpy as np
 from kernels import codes
 
 POLL = 0.02  # s between tests of a pending message or request
+DEAL_POLL = 0.001  # s between the dealer's tests for requests, and a rank's for its answer
 FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
-TAG_PLAN, TAG_PROGRESS = 11, 12
+TAG_PLAN, TAG_PROGRESS, TAG_TAKE, TAG_CHUNK = 11, 12, 13, 14
 WATCH_FLOOR = 300.0  # s of silence always allowed to a rank (sweep.run --rank-timeout)
 WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so far is stuck
 
@@ -40,9 +46,10 @@ ChunkDone.__doc__ = """A rank's message to rank 0 (``TAG_PROGRESS``): a chunk of
 which ``failed`` failed, took ``seconds``; ``first`` is its first cell id (the :class:`Watch`
 finds the chunk by it)."""
 
-RankDone = namedtuple("RankDone", "cells seconds")
+RankDone = namedtuple("RankDone", "cells seconds started ended")
 RankDone.__doc__ = """A rank's last message to rank 0 (``TAG_PROGRESS``): it computed ``cells``
-cells in ``seconds`` busy; also the value of :func:`work`'s ``stats`` for each rank."""
+cells in ``seconds`` busy, from ``started`` to ``ended`` (``time.time()``, None without a
+chunk); also the value of :func:`work`'s ``stats`` for each rank."""
 
 
 class LauncherMismatch(RuntimeError):
@@ -217,6 +224,15 @@ def abort_on_exception(comm):
         comm.Abort(1)
 
 
+def gather(comm, value):
+    """Every rank's ``value``, in rank order, on rank 0 (None on the others; one process:
+    ``[value]``); the ranks meet in a sleeping :func:`barrier` first."""
+    if not is_mpi(comm):
+        return [value]
+    barrier(comm)
+    return comm.gather(value, root=0)
+
+
 def distribute(comm, plans=None):
     """Rank 0 hands ``plans[r]`` to each rank r and keeps ``plans[0]``; the others wait for it.
 
@@ -238,34 +254,45 @@ def _failed(result):
 
 
 class Watch:
-    """Rank 0's view of the other ranks: when each was last heard, the chunks it still holds.
+    """Rank 0's view of the other ranks: when each was last heard, the chunks it holds.
 
     Parameters
     ----------
-    held : list of lists of ndarray
-        The chunks dealt to every rank (``grid.plan``).
+    size : int
+        Number of ranks (rank 0 is not watched).
     floor : float
         Seconds of silence always allowed; 0 or None: no watch.
     """
 
-    def __init__(self, held, floor=WATCH_FLOOR, clock=time.monotonic):
+    def __init__(self, size, floor=WATCH_FLOOR, clock=time.monotonic):
         self.clock = clock
         now = clock()
         self.floor = floor or 0.0
-        self.held = {r: {int(c[0]): c for c in chunks} for r, chunks in enumerate(held) if r}
+        self.held = {r: {} for r in range(1, size)}
         self.last = {r: now for r in self.held}
         self.slowest = 0.0
+        self._lock = threading.Lock()  # the dealer's thread hands out chunks (took)
+
+    def took(self, rank, chunk):
+        """``rank`` was handed ``chunk`` (it is alive)."""
+        with self._lock:
+            if rank in self.held:
+                self.held[rank][int(chunk[0])] = chunk
+                self.last[rank] = self.clock()
 
     def chunk_done(self, rank, seconds, first=None):
         """A chunk (starting at cell ``first``) took ``seconds`` on ``rank``."""
-        self.slowest = max(self.slowest, seconds)
-        self.last[rank] = self.clock()
-        self.held.get(rank, {}).pop(first, None)
+        with self._lock:
+            self.slowest = max(self.slowest, seconds)
+            if rank in self.last:
+                self.last[rank] = self.clock()
+                self.held[rank].pop(first, None)
 
     def rank_done(self, rank):
         """``rank`` finished all its chunks."""
-        self.held.pop(rank, None)
-        self.last.pop(rank, None)
+        with self._lock:
+            self.held.pop(rank, None)
+            self.last.pop(rank, None)
 
     def limit(self):
         """Seconds of silence after which a rank is taken for stopped or stuck."""
@@ -275,27 +302,139 @@ class Watch:
         """Raise :class:`RankSilent` for the first rank silent for longer than :meth:`limit`."""
         if not self.floor:
             return
-        now, limit = self.clock(), self.limit()
-        for rank, last in self.last.items():
-            if now - last > limit:
-                cells = np.concatenate(list(self.held[rank].values()) or [np.zeros(0, int)])
-                raise RankSilent(
-                    f"rank {rank} sent nothing for {now - last:.0f} s (the limit is "
-                    f"max({self.floor:g} s, {WATCH_FACTOR:g} x the slowest chunk so far, "
-                    f"{self.slowest:.2g} s)): it is stopped or stuck. It held {cells.size} "
-                    f"cells not yet saved (first: {np.sort(cells)[:10].tolist()}); the "
-                    "others' parts are kept: run the same command again to resume, or raise "
-                    "--rank-timeout")
+        with self._lock:
+            now, limit = self.clock(), self.limit()
+            silent = [(rank, now - last) for rank, last in self.last.items()
+                      if now - last > limit]
+            if not silent:
+                return
+            rank, quiet = silent[0]
+            cells = np.concatenate(list(self.held[rank].values()) or [np.zeros(0, int)])
+        raise RankSilent(
+            f"rank {rank} sent nothing for {quiet:.0f} s (the limit is "
+            f"max({self.floor:g} s, {WATCH_FACTOR:g} x the slowest chunk so far, "
+            f"{self.slowest:.2g} s)): it is stopped or stuck. It held {cells.size} "
+            f"cells not yet saved (first: {np.sort(cells)[:10].tolist()}); the "
+            "others' parts are kept: run the same command again to resume, or raise "
+            "--rank-timeout")
 
 
-def _drain(comm, progress, stats, watch):
+class Dealer:
+    """Rank 0's dealing of a round's chunks (``grid.Chunks``), one at a time, to whichever
+    rank asks first.
+
+    Rank 0 takes its own with :meth:`take`; the other ranks ask with a message
+    (``TAG_TAKE``, :class:`Taker`) and are answered with the chunk's index (``TAG_CHUNK``; -1
+    when none is left) by :meth:`serve`, which a thread of rank 0 runs every ``DEAL_POLL``
+    seconds while rank 0 computes (the kernel releases the GIL).  An MPI library that allows
+    no calls from a second thread (below ``MPI_THREAD_SERIALIZED``) gets no thread: rank 0
+    then serves between its chunks.  MPI calls of the thread and of rank 0's own loop are
+    made under one lock.
+
+    Parameters
+    ----------
+    comm : communicator or SerialComm
+    chunks : grid.Chunks
+    watch : Watch, optional
+        Told which rank took which chunk.
+    """
+
+    def __init__(self, comm, chunks, watch=None):
+        self.comm, self.chunks, self.watch = comm, chunks, watch
+        self.next = 0
+        self.told = 0  # ranks told that no chunk is left
+        self.mpi_lock = threading.Lock()
+        self._stop = threading.Event()
+        self._thread = None
+
+    def _index(self, rank):
+        """The index of the next chunk, now ``rank``'s, or -1 when none is left."""
+        with self.mpi_lock:
+            if self.next >= len(self.chunks):
+                return -1
+            k, self.next = self.next, self.next + 1
+        if self.watch is not None and rank:
+            self.watch.took(rank, self.chunks[k])
+        return k
+
+    def take(self):
+        """Rank 0's next chunk, or None when none is left."""
+        k = self._index(0)
+        return None if k < 0 else self.chunks[k]
+
+    def serve(self):
+        """Answer every request waiting; True if there was one."""
+        from mpi4py import MPI
+
+        status, served = MPI.Status(), False
+        while True:
+            with self.mpi_lock:
+                if not self.comm.Iprobe(source=MPI.ANY_SOURCE, tag=TAG_TAKE, status=status):
+                    return served
+                source = status.Get_source()
+                self.comm.recv(source=source, tag=TAG_TAKE)
+            k = self._index(source)
+            with self.mpi_lock:
+                self.comm.send(k, dest=source, tag=TAG_CHUNK)
+            self.told += k < 0
+            served = True
+
+    def _serve_all(self):
+        while self.told < self.comm.Get_size() - 1 and not self._stop.is_set():
+            if not self.serve():
+                time.sleep(DEAL_POLL)
+
+    def threaded(self):
+        """True when :meth:`start` runs the dealing in a thread."""
+        return self._thread is not None
+
+    def start(self):
+        """Serve the other ranks from a thread (several ranks and a library that allows it)."""
+        if not is_mpi(self.comm) or self.comm.Get_size() == 1:
+            return self
+        from mpi4py import MPI
+
+        if MPI.Query_thread() >= MPI.THREAD_SERIALIZED:
+            self._thread = threading.Thread(target=self._serve_all, name="sweep-dealer",
+                                            daemon=True)
+            self._thread.start()
+        return self
+
+    def close(self):
+        """Stop serving (every rank has been told; or the job is ending early)."""
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join()
+
+
+class Taker:
+    """A rank other than 0: asks rank 0's :class:`Dealer` for its next chunk."""
+
+    def __init__(self, comm, chunks):
+        self.comm, self.chunks = comm, chunks
+
+    def take(self):
+        """The next chunk, or None when none is left."""
+        self.comm.send(None, dest=0, tag=TAG_TAKE)
+        request = self.comm.irecv(source=0, tag=TAG_CHUNK)
+        while True:
+            done, k = request.test()
+            if done:
+                return None if k < 0 else self.chunks[k]
+            time.sleep(DEAL_POLL)
+
+
+def _drain(comm, progress, stats, watch, lock):
     """Take every waiting progress message on rank 0; returns how many ranks said done."""
     from mpi4py import MPI
 
     status, finished = MPI.Status(), 0
-    while comm.Iprobe(source=MPI.ANY_SOURCE, tag=TAG_PROGRESS, status=status):
-        source = status.Get_source()
-        message = comm.recv(source=source, tag=TAG_PROGRESS)
+    while True:
+        with lock:
+            if not comm.Iprobe(source=MPI.ANY_SOURCE, tag=TAG_PROGRESS, status=status):
+                return finished
+            source = status.Get_source()
+            message = comm.recv(source=source, tag=TAG_PROGRESS)
         if isinstance(message, ChunkDone):
             if progress is not None:
                 progress.update(message.cells, message.failed)
@@ -306,19 +445,19 @@ def _drain(comm, progress, stats, watch):
             finished += 1
             if watch is not None:
                 watch.rank_done(source)
-    return finished
 
 
-def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_idle=None,
+def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, before=None,
          watch=None):
-    """Run this rank's chunks; on rank 0, also follow every rank until all are done.
+    """Compute chunks of a round until none is left; on rank 0, also deal them and follow
+    every rank until all are done.
 
     Parameters
     ----------
     comm : communicator or SerialComm
     study : Study
-    chunks : list of ndarray
-        This rank's chunks of cell ids.
+    chunks : grid.Chunks
+        The round's chunks, the same on every rank; each rank computes those it is dealt.
     store : PartStore, optional
         Where each finished chunk is written; without it (one process only) the results are
         kept in memory and returned.
@@ -326,19 +465,18 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
         Rank 0's progress display.
     run_chunk : callable, optional
         ``run_chunk(study, cells) -> dict``; default ``cells.run_chunk``.
-    on_idle : callable, optional
-        Called once on rank 0 when its own chunks are done and other ranks are still working
-        (to prepare the merge in time that would be spent waiting).
+    before : callable, optional
+        Called once on rank 0 after the dealing started, before its own first chunk (what rank
+        0 still has to load while the others compute).
     watch : Watch, optional
-        Rank 0: the other ranks' chunks, to detect a rank that stopped answering.
+        Rank 0: to detect a rank that stopped answering.
 
     Returns
     -------
     results : list of dict
         The chunk results kept in memory (empty with a store).
     stats : dict
-        On rank 0: rank -> :class:`RankDone` (cells computed, seconds busy) for every rank;
-        else this rank's.
+        On rank 0: rank -> :class:`RankDone` for every rank; else this rank's.
 
     Raises
     ------
@@ -349,43 +487,60 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, on_i
         from .cells import run_chunk
     if store is None and comm.Get_size() > 1:
         raise ValueError("several ranks need a `store` for their results")
+    rank = comm.Get_rank()
+    source = Dealer(comm, chunks, watch).start() if rank == 0 else Taker(comm, chunks)
+    try:
+        if before is not None:
+            before()
+        return _work(comm, study, source, store, progress, run_chunk, watch)
+    finally:
+        if rank == 0:
+            source.close()
+
+
+def _work(comm, study, source, store, progress, run_chunk, watch):
+    """:func:`work` once the dealing stands."""
     rank, size = comm.Get_rank(), comm.Get_size()
     kept, requests, stats = [], [], {}
     busy, n_done, pending = 0.0, 0, size - 1
-    for chunk in chunks:
+    started = ended = None
+    lock = getattr(source, "mpi_lock", None)
+    while (chunk := source.take()) is not None:
         t0 = time.perf_counter()
+        started = started or time.time()
         result = run_chunk(study, chunk)
         if store is not None:
             store.write_part(result)
         else:
             kept.append(result)
         seconds = time.perf_counter() - t0
+        ended = time.time()
         busy += seconds
         n_done += len(chunk)
         if rank == 0:
             if progress is not None:
                 progress.update(len(chunk), _failed(result))
             if size > 1:
+                if not source.threaded():
+                    source.serve()
                 if watch is not None:
                     watch.chunk_done(0, seconds)
-                pending -= _drain(comm, progress, stats, watch)
+                pending -= _drain(comm, progress, stats, watch, lock)
                 if watch is not None:
                     watch.check()
         else:
             requests.append(comm.isend(ChunkDone(len(chunk), _failed(result), seconds,
                                                  int(chunk[0])), dest=0, tag=TAG_PROGRESS))
             requests = [r for r in requests if not r.Test()]
-    stats[rank] = RankDone(n_done, busy)
+    stats[rank] = RankDone(n_done, busy, started, ended)
     if rank == 0:
-        pending -= _drain(comm, progress, stats, watch) if size > 1 else 0
-        if pending > 0 and on_idle is not None:
-            on_idle()
         while pending > 0:
-            pending -= _drain(comm, progress, stats, watch)
-            if pending > 0:
+            served = False if source.threaded() else source.serve()
+            pending -= _drain(comm, progress, stats, watch, lock)
+            if pending > 0 and not served:
                 if watch is not None:
                     watch.check()
-                time.sleep(POLL)
+                time.sleep(DEAL_POLL if not source.threaded() else POLL)
     else:
         requests.append(comm.isend(stats[rank], dest=0, tag=TAG_PROGRESS))
         for request in requests:

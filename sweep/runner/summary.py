@@ -4,6 +4,7 @@ Everything here prints (rank 0 only); nothing decides how the run goes.
 """
 import sys
 import time
+from collections import namedtuple
 
 import numpy as np
 
@@ -17,6 +18,28 @@ from .progress import emit, format_seconds
 SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
 MAX_LISTED = 20  # failed cells listed in the summary
 SUMMARY_VARIABLES = ("outcome", "status")  # what :func:`summary` reads of every cell
+
+
+class Timeline(namedtuple("Timeline", "wall startup cells merge")):
+    """Where a run's wall time went, in seconds: ``startup`` from the start of the run on
+    rank 0 (the study read, nothing yet checked) to the first chunk on any rank, ``cells``
+    from there to the last chunk's end on any rank, ``merge`` from there to the dataset
+    written (None: no chunk ran, every cell was done by an earlier run)."""
+
+    @classmethod
+    def of(cls, start, stats, end):
+        """From ``time.time()`` at the start and at the end and the ranks' ``mpi.RankDone``."""
+        first = min((s.started for s in stats.values() if s.started is not None), default=None)
+        last = max((s.ended for s in stats.values() if s.ended is not None), default=None)
+        if first is None:
+            return cls(end - start, None, None, None)
+        return cls(end - start, first - start, last - first, end - last)
+
+    def text(self):
+        if self.startup is None:
+            return f"{self.wall:.1f} s"
+        return (f"{self.wall:.1f} s (start-up {self.startup:.2f} s, cells {self.cells:.1f} s, "
+                f"merge and write {self.merge:.2f} s)")
 
 
 def say(*text, file=None):
@@ -70,7 +93,7 @@ def dry_run(study, size, seed, done):
          + f"; plus start-up (kernel load {format_seconds(compile_s)})")
 
 
-def summary(study, arrays, wall, stats, quiet, size):
+def summary(study, arrays, timeline, stats, quiet, size):
     """Counts of outcomes, failed cells with their coordinates, balance of the ranks.
 
     ``arrays``: the ``SUMMARY_VARIABLES`` of every cell, in cell order.
@@ -80,7 +103,7 @@ def summary(study, arrays, wall, stats, quiet, size):
     if not quiet:
         counts = ", ".join(f"{int(np.sum(outcome == code))} {name.replace('_', ' ')}"
                            for code, name in zip(*cf.OUTCOME_FLAGS))
-        say(f"sweep.run: wrote {study.output}: {study.n_cells} cells in {wall:.1f} s on "
+        say(f"sweep.run: wrote {study.output}: {study.n_cells} cells in {timeline.text()} on "
              f"{size} rank{'s' if size > 1 else ''}; {counts}")
         _say_busy(stats, size)
     if failed.size:
@@ -106,7 +129,7 @@ def _say_more(n):
         say(f"  ... and {n - MAX_LISTED} more", file=sys.stderr)
 
 
-def refine_summary(study, brackets, wall, stats, quiet, size):
+def refine_summary(study, brackets, timeline, stats, quiet, size):
     """Counts of the brackets, simulations against a dense grid, lines that failed."""
     k, _ = refine.refined_axis(study)
     first_cells = refine.coarse_cells(study)[:, 0]
@@ -116,7 +139,7 @@ def refine_summary(study, brackets, wall, stats, quiet, size):
         say(f"sweep.run: wrote {study.output}: {brackets.flag.size} lines in "
              f"{brackets.rounds} rounds, {int(brackets.simulations.sum())} simulations (at "
              f"most {refine.max_simulations(study)}; a grid of the same resolution: "
-             f"{refine.dense_simulations(study)}) in {wall:.1f} s on {size} "
+             f"{refine.dense_simulations(study)}) in {timeline.text()} on {size} "
              f"rank{'s' if size > 1 else ''}; {counts}")
         _say_busy(stats, size)
     failed = np.flatnonzero(brackets.flag == refine.FAILED)

@@ -78,17 +78,17 @@ def test_shuffle_is_a_seeded_permutation():
     assert not np.array_equal(a, np.arange(1000))
 
 
-@pytest.mark.parametrize("chunk_size, size", [(1, 1), (7, 2), (64, 3)])
-def test_plan_covers_every_cell_left_once(chunk_size, size):
+@pytest.mark.parametrize("chunk_size", [1, 7, 64])
+def test_plan_covers_every_cell_left_once(chunk_size):
     done = np.arange(0, 500, 3)
-    dealt = grid.plan(500, done, chunk_size, size, seed=0)
-    assert len(dealt) == size
-    cells = np.concatenate([c for rank in dealt for c in rank])
+    chunks = grid.plan(500, done, chunk_size, seed=0)
+    assert len(chunks) == -(-(500 - done.size) // chunk_size)
+    cells = np.concatenate([chunks[k] for k in range(len(chunks))])
     np.testing.assert_array_equal(np.sort(cells), np.setdiff1d(np.arange(500), done))
-    assert all(len(c) <= chunk_size for rank in dealt for c in rank)
-    # chunks dealt round-robin: rank loads differ by at most one chunk
-    loads = [len(rank) for rank in dealt]
-    assert max(loads) - min(loads) <= 1
+    assert all(len(chunks[k]) <= chunk_size and np.all(np.diff(chunks[k]) > 0)
+               for k in range(len(chunks)))
+    with pytest.raises(IndexError):
+        chunks[len(chunks)]
 
 
 def test_default_chunk_size():

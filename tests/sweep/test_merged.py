@@ -30,7 +30,7 @@ def _parts(study, whole, folder, chunk_size=5):
     """The cells of ``whole`` as part files of ``chunk_size`` cells, in shuffled chunks."""
     parts = store.PartStore(folder)
     parts.prepare(study)
-    for chunk in grid.plan(study.n_cells, [], chunk_size, 1, seed=3)[0]:
+    for chunk in grid.plan(study.n_cells, [], chunk_size, seed=3):
         parts.write_part({key: value[chunk] for key, value in whole.items()})
     return parts
 

@@ -1,5 +1,5 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
-any chunk size, and of ``sweep.risk``'s report; abort on an exception; resume of a
+any chunk size, and of ``sweep.risk``'s report; chunks dealt to the rank that is free; abort on an exception; resume of a
 terminated job with another rank count; Ctrl-C; a stopped rank detected and named; the
 launcher/library mismatch message."""
 import os
@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 import xarray as xr
 from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
@@ -48,6 +49,37 @@ def test_two_ranks_equal_one_rank_for_any_chunk_size(tmp_path):
     assert set(reference["outcome"].values.ravel()) >= {0, 1, 2}
     for name in ("chunk3.nc", "chunk7.nc"):
         assert _open(tmp_path / name).identical(reference), name
+
+
+def test_chunks_go_to_the_rank_that_is_free(tmp_path):
+    """Dynamic dealing: a rank three times slower takes about a quarter of the chunks, and
+    both ranks end within a few chunks of each other (a fixed deal would give each half, and
+    rank 1 would end 1.2 s after rank 0)."""
+    import json
+
+    done = _mpiexec(PY, SCRIPT, "deal", tmp_path / "parts", cwd=tmp_path, timeout=120)
+    assert done.returncode == 0, done.stderr
+    stats = {int(r): s for r, s in json.loads(done.stdout).items()}
+    cells = np.concatenate([np.load(p)["cell"] for p in (tmp_path / "parts").glob("part-*")])
+    np.testing.assert_array_equal(np.sort(cells), np.arange(120))  # each cell once
+    assert stats[0][0] + stats[1][0] == 120
+    assert 2.0 < stats[0][0] / stats[1][0] < 4.5, stats  # speeds 1/10 ms : 1/30 ms = 3
+    assert abs(stats[0][1] - stats[1][1]) < 0.3, stats
+
+
+def test_cells_checked_by_two_ranks_say_what_one_says(tmp_path):
+    """The cells' checks shared by the ranks: the same problems (exit 2, nothing written) and
+    the same warnings as one process, line for line."""
+    bad = make_study({"frequency": [-2.0, 1.0, 2.0, -3.0], "B": [0.1, -0.2]}, output="b.nc")
+    doubted = make_study({"frequency": [1.0, 2.0], "excitation.horizontal.phase": [0.0, 90.0]},
+                         output="d.nc")
+    for raw, status in ((bad, 2), (doubted, 0)):
+        study = write_study(tmp_path / "s.yaml", raw)
+        one = cli([study, "--quiet", "--force"], cwd=tmp_path)
+        two = _mpiexec(PY, "-m", "sweep.run", study, "--quiet", "--force", cwd=tmp_path)
+        assert one.returncode == two.returncode == status, (one.stderr, two.stderr)
+        assert two.stderr == one.stderr and ("problems" if status else "warning") in one.stderr
+    assert not (tmp_path / "b.nc").exists()
 
 
 def test_exception_on_one_rank_aborts_the_job(tmp_path):
@@ -95,15 +127,32 @@ def _slow_job(tmp_path, *extra):
     return study, job, store.parts_dir(tmp_path / "r.nc")
 
 
-def _rank_pid(rank):
-    """The pid of a rank of the running job, from its launcher's PMI_RANK."""
+def _parent(pid):
+    """The parent of process ``pid`` (0 when it is gone)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return 0
+    return int(stat.rsplit(")", 1)[1].split()[1])
+
+
+def _rank_pid(job, rank):
+    """The pid of a rank of the running ``job`` (a process under its mpiexec), from its
+    launcher's PMI_RANK; other jobs on the machine are not looked at."""
     for proc in Path("/proc").iterdir():
+        if not proc.name.isdigit():
+            continue
         try:
             env = (proc / "environ").read_bytes().split(b"\0")
             cmd = (proc / "cmdline").read_bytes()
         except OSError:
             continue
-        if b"sweep.run" in cmd and f"PMI_RANK={rank}".encode() in env:
+        if b"sweep.run" not in cmd or f"PMI_RANK={rank}".encode() not in env:
+            continue
+        pid = int(proc.name)
+        while pid > 1 and pid != job.pid:
+            pid = _parent(pid)
+        if pid == job.pid:
             return int(proc.name)
     raise AssertionError(f"no process of rank {rank}")
 
@@ -128,7 +177,7 @@ def test_ctrl_c_under_mpiexec_saves_and_resumes(tmp_path):
 def test_a_stopped_rank_is_detected_and_named(tmp_path):
     study, job, parts = _slow_job(tmp_path, "--rank-timeout", "2")
     wait_for_parts(job, parts, 4)
-    rank1 = _rank_pid(1)
+    rank1 = _rank_pid(job, 1)
     os.kill(rank1, signal.SIGSTOP)
     stopped = time.monotonic()
     try:

@@ -45,7 +45,7 @@ def whole(study):
 def _parts(study, tmp_path, chunk_size, seed):
     parts = store.PartStore(tmp_path / f"parts{chunk_size}")
     parts.prepare(study)
-    for chunk in grid.plan(study.n_cells, [], chunk_size, 1, seed)[0]:
+    for chunk in grid.plan(study.n_cells, [], chunk_size, seed):
         parts.write_part(run_chunk(study, chunk))
     return parts
 

@@ -130,7 +130,7 @@ def test_large_grids_checked_by_a_bounded_choice_of_cells():
     from sweep.runner import cell_checks
     study = load_study(make_study({"amplitude": {"start": 1, "stop": 2, "num": 3000},
                                    "frequency": [1.0, 2.0, 3.0, -4.0]}), check_cells=False)
-    checked = cell_checks._checked_cells(study)
+    checked = cell_checks.checked_cells(study)
     n_checked = cell_checks.CHECKED_PER_DIM + 4 + cell_checks.SAMPLED_CELLS
     assert study.n_cells > cell_checks.CHECK_ALL_CELLS and len(checked) <= n_checked
     assert [p.path for p in cell_checks.cell_problems(study)] == ["grid.frequency[3]"]
