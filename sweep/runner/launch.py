@@ -32,7 +32,8 @@ from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
 from .progress import Progress
-from .summary import Timeline, dry_run, refine_summary, refine_text, say, shape_text, summary
+from .summary import (SUMMARY_VARIABLES, Timeline, dry_run, refine_summary, refine_text, say,
+                      shape_text, summary)
 
 # What rank 0 hands every rank (mpi.distribute)
 Stop = namedtuple("Stop", "refused")
@@ -291,7 +292,9 @@ def _compute(comm, study, options, rounds=None):
     """Every cell of ``study`` on the ranks: one round, or a refine study's rounds.
 
     ``rounds`` is rank 0's :class:`_Rounds`.  Returns, on rank 0, the arrays of every cell
-    (``cf.to_dataset``) or a refine study's ``refine.Brackets``; None on the other ranks.
+    (``cf.to_dataset``: a dict in memory, or ``merged.MergedParts`` reading the part files a
+    group of variables at a time) or a refine study's ``refine.Brackets``; None on the other
+    ranks.
     """
     if comm.Get_rank() != 0:
         _follow(comm, study, options)
@@ -312,10 +315,17 @@ def _dataset(study, result, history):
     return cf.to_dataset(study, result, history=history)
 
 
-def _write(ds, study, stamp, parts):
-    """The dataset, stamped with its inputs' fingerprint, then the parts removed."""
-    ds.attrs[store.FINGERPRINT_ATTR] = stamp
-    store.write_netcdf(ds, study.output)
+def _write(study, result, history, stamp, parts):
+    """The dataset of :func:`_compute`'s result, stamped with its inputs' fingerprint, then
+    the parts removed.  A grid study's is written from its part files a group of variables at
+    a time (``store.write_merged``); a refine study's boundaries are few, in memory."""
+    stamped = {store.FINGERPRINT_ATTR: stamp}
+    if study.refine:
+        ds = _dataset(study, result, history)
+        ds.attrs.update(stamped)
+        store.write_netcdf(ds, study.output)
+    else:
+        store.write_merged(study, result, study.output, history=history, attrs=stamped)
     parts.remove()
 
 
@@ -458,12 +468,13 @@ def _run(comm, path, options, state):
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
     result = _compute(comm, study, options, rounds)
     if rank == 0:
-        _write(_dataset(study, result, options.command_line(size)), study, plan.stamp, parts)
+        said = result if study.refine else result.read(SUMMARY_VARIABLES)  # parts go in _write
+        _write(study, result, options.command_line(size), plan.stamp, parts)
         timeline = Timeline.of(t_start, rounds.stats, time.time())
         if study.refine:
-            refine_summary(study, result, timeline, rounds.stats, options.quiet, size)
+            refine_summary(study, said, timeline, rounds.stats, options.quiet, size)
         else:
-            summary(study, result, timeline, rounds.stats, options.quiet, size)
+            summary(study, said, timeline, rounds.stats, options.quiet, size)
     mpi.barrier(comm)
 
 

@@ -8,7 +8,9 @@ ids it covers, so a run resumes from whatever parts exist with any chunk size an
 study, the content of its record files, the program) and every part carries it too: parts of
 other inputs are refused with what changed, and a part that disagrees with the manifest stops
 the merge, never a mixed dataset.  A refine study keeps the parts of each round in a folder of
-its own (``round-000/``, ``round-001/``, ...).  The dataset is written to a temporary file in
+its own (``round-000/``, ``round-001/``, ...).  The merge reads the parts a group of
+variables at a time (``runner.merged``), and :func:`write_merged` writes a study's dataset one
+group after the other.  The dataset is written to a temporary file in
 the output's folder and renamed, so a reader never sees half a file; it carries the
 fingerprint as its ``input_fingerprint`` attribute, so that a run killed after writing it
 finishes its clean-up when started again.  A parts folder is removed by renaming it first
@@ -19,6 +21,7 @@ import json
 import os
 import shutil
 import zipfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +29,7 @@ import numpy as np
 from .. import cf
 from ..io.files import TMP_MARK, replacing, write_atomic
 from . import fingerprint
+from .merged import MergedParts, placeholder
 from .mpi import JobFailure
 
 MANIFEST = "manifest.json"
@@ -170,23 +174,31 @@ class PartStore:
         write_atomic(self.directory / name, lambda f: np.savez(f, **stamped))
         return self.directory / name
 
-    def _load(self, path, n_cells):
-        """A part's arrays, checked against the manifest: its fingerprint and its cell ids."""
+    def _cells(self, path, n_cells):
+        """A part's cell ids, checked against the manifest: its fingerprint and its cells."""
         with np.load(path, allow_pickle=False) as npz:
-            part = {key: npz[key] for key in npz.files}
-        if str(part.get("fingerprint", "")) != self.stamp:
+            stamp = str(npz["fingerprint"]) if "fingerprint" in npz.files else ""
+            cell = np.asarray(npz["cell"], dtype=np.int64)
+        if stamp != self.stamp:
             raise StoreError(f"{path} was computed from other inputs than {MANIFEST} states; "
                              "nothing was merged. Run again with --force to compute every "
                              "cell again")
-        cell = part["cell"]
         if cell.size and (cell.min() < 0 or cell.max() >= n_cells):
             raise StoreError(f"{path} holds cells outside 0 .. {n_cells - 1}; nothing was merged")
-        return part
+        return cell
+
+    def index(self, n_cells):
+        """Every part file with the cell ids it holds, each checked against the manifest and
+        together covering all ``n_cells`` cells (else :class:`StoreError`)."""
+        index = [(path, self._cells(path, n_cells)) for path in self.parts()]
+        _check_covered([cell for _, cell in index], n_cells)
+        return index
 
     def merge(self, n_cells):
-        """Every cell's arrays from the part files, in cell order (see :func:`merge`); every
-        part is checked against the manifest first."""
-        return merge([self._load(p, n_cells) for p in self.parts()], n_cells)
+        """Every cell's arrays from the part files, in cell order, read a group of variables
+        at a time (``merged.MergedParts``); every part is checked against the manifest
+        first."""
+        return MergedParts(self.index(n_cells), n_cells)
 
     def remove(self):
         """Delete the parts folder (after the dataset is written)."""
@@ -218,16 +230,23 @@ def merge(parts, n_cells):
         When some cells are covered by no part.
     """
     out = {name: cf.empty(name, n_cells) for name in cf.VARIABLES}
-    seen = np.zeros(n_cells, dtype=bool)
+    cells = []
     for part in parts:
-        cell = np.asarray(part["cell"], dtype=np.int64)
-        seen[cell] = True
+        cells.append(np.asarray(part["cell"], dtype=np.int64))
         for name in cf.VARIABLES:
-            out[name][cell] = part[name]
+            out[name][cells[-1]] = part[name]
+    _check_covered(cells, n_cells)
+    return out
+
+
+def _check_covered(cells, n_cells):
+    """:class:`StoreError` when the arrays of cell ids ``cells`` leave some cells out."""
+    seen = np.zeros(n_cells, dtype=bool)
+    for cell in cells:
+        seen[cell] = True
     if not seen.all():
         missing = np.flatnonzero(~seen)
         raise StoreError(f"{missing.size} cells have no results (first: {missing[:5].tolist()})")
-    return out
 
 
 def check_output(path, force):
@@ -250,6 +269,67 @@ def finished_earlier(path, stamp):
             return getattr(nc, FINGERPRINT_ATTR, None) == stamp
     except (OSError, RuntimeError, ValueError):
         return False
+
+
+def write_merged(study, merged, path, *, history=None, attrs=None):
+    """Write the dataset of a study (``cf.to_dataset``) from its part files to ``path``
+    atomically, holding one group of variables at a time.
+
+    xarray writes the whole file, its first group of variables read (``merged.groups``) and
+    the others as placeholders (``merged.placeholder``): the file's variables, order, encoding
+    and attributes are those of :func:`write_netcdf`.  netCDF4 then writes each other group
+    into its variables, read one group at a time.
+
+    Parameters
+    ----------
+    study : Study
+    merged : merged.MergedParts
+    path : str or Path
+    history : str, optional
+        The command for the ``history`` attribute.
+    attrs : dict, optional
+        Global attributes added to the dataset's.
+    """
+    import netCDF4
+
+    with replacing(path) as tmp, _no_chunk_cache():
+        written = _write_first(study, merged, tmp, history, attrs or {})
+        with netCDF4.Dataset(tmp, "a") as nc:
+            for group in merged.groups[1:]:
+                _fill(nc, merged.read([name for name in group if name in written]))
+    return Path(path)
+
+
+@contextmanager
+def _no_chunk_cache():
+    """No chunk cache for the netCDF files opened in the block: netCDF-C keeps up to 64 MiB
+    of each variable's chunks until its file is closed, every variable written in full."""
+    import netCDF4
+
+    before = netCDF4.get_chunk_cache()
+    netCDF4.set_chunk_cache(0, 0, 1.0)
+    try:
+        yield
+    finally:
+        netCDF4.set_chunk_cache(*before)
+
+
+def _write_first(study, merged, tmp, history, attrs):
+    """Write the dataset with the first group of variables read and placeholders for the
+    others; returns the names of its data variables (an axis's own result is a coordinate)."""
+    first = merged.read(merged.groups[0])
+    arrays = {name: first[name] if name in first else placeholder(name, merged.n_cells)
+              for name in cf.VARIABLES}
+    ds = cf.to_dataset(study, arrays, history=history)
+    ds.attrs.update(attrs)
+    ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=cf.encoding(ds))
+    return set(ds.data_vars)
+
+
+def _fill(nc, arrays):
+    """Write per-cell arrays into the variables of an open netCDF4 Dataset."""
+    for name, a in arrays.items():
+        nc[name][...] = a.reshape(nc[name].shape)
 
 
 def write_netcdf(ds, path):

@@ -17,6 +17,7 @@ from .progress import emit, format_seconds
 
 SAMPLE_CELLS = 16  # cells timed by --dry-run for its estimate
 MAX_LISTED = 20  # failed cells listed in the summary
+SUMMARY_VARIABLES = ("outcome", "status")  # what :func:`summary` reads of every cell
 
 
 class Timeline(namedtuple("Timeline", "wall startup cells merge")):
@@ -93,7 +94,10 @@ def dry_run(study, size, seed, done):
 
 
 def summary(study, arrays, timeline, stats, quiet, size):
-    """Counts of outcomes, failed cells with their coordinates, balance of the ranks."""
+    """Counts of outcomes, failed cells with their coordinates, balance of the ranks.
+
+    ``arrays``: the ``SUMMARY_VARIABLES`` of every cell, in cell order.
+    """
     outcome, status = arrays["outcome"], arrays["status"]
     failed = np.flatnonzero(outcome == codes.FAILED)
     if not quiet:
