@@ -24,3 +24,22 @@ def _close_figures():
     yield
     if "matplotlib.pyplot" in sys.modules:
         sys.modules["matplotlib.pyplot"].close("all")
+
+
+@pytest.fixture(scope="module")
+def study():
+    """4 x 3 x 2 cells (amplitude, frequency, b/h) for the part-file and merge tests; a module
+    that needs another ``study`` defines its own."""
+    from sweep.runner.cell_checks import load_study
+    return load_study(make_study({
+        "amplitude": {"values": [0.5, 1.5, 2.5, 3.0], "unit": "west"},
+        "frequency": [1.5, 3.0, 8.0], "b_over_h": [0.333, 0.2]}))
+
+
+@pytest.fixture(scope="module")
+def whole(study):
+    """All cells of ``study`` in one chunk."""
+    import numpy as np
+
+    from sweep.runner.cells import run_chunk
+    return run_chunk(study, np.arange(study.n_cells))

@@ -5,25 +5,10 @@ import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
-from study_helpers import make_study, without_run_attrs
+from study_helpers import without_run_attrs
 
 from sweep import cf
 from sweep.runner import grid, merged, store
-from sweep.runner.cell_checks import load_study
-from sweep.runner.cells import run_chunk
-
-
-@pytest.fixture(scope="module")
-def study():
-    return load_study(make_study({
-        "amplitude": {"values": [0.5, 1.5, 2.5, 3.0], "unit": "west"},
-        "frequency": [1.5, 3.0, 8.0], "b_over_h": [0.333, 0.2]}))
-
-
-@pytest.fixture(scope="module")
-def whole(study):
-    """All cells in one chunk."""
-    return run_chunk(study, np.arange(study.n_cells))
 
 
 def _parts(study, whole, folder, chunk_size=5):

@@ -29,19 +29,6 @@ CONTRACT = {
 }
 
 
-@pytest.fixture(scope="module")
-def study():
-    return load_study(make_study({
-        "amplitude": {"values": [0.5, 1.5, 2.5, 3.0], "unit": "west"},
-        "frequency": [1.5, 3.0, 8.0], "b_over_h": [0.333, 0.2]}))
-
-
-@pytest.fixture(scope="module")
-def whole(study):
-    """All cells in one chunk."""
-    return run_chunk(study, np.arange(study.n_cells))
-
-
 def _parts(study, tmp_path, chunk_size, seed):
     parts = store.PartStore(tmp_path / f"parts{chunk_size}")
     parts.prepare(study)
