@@ -1,10 +1,14 @@
-"""``python -m benchmarks.scaling [RANKS ...]``: wall time of ``sweep_map.yaml`` on 1, 2, 4,
-8 and 16 ranks (those up to the machine's cores, unless named), launch to exit, the speed-up
-and efficiency against one rank, and whether every dataset is identical to one rank's."""
+"""``python -m benchmarks.scaling [--levels N] [RANKS ...]``: wall time of ``sweep_map.yaml``
+on 1, 2, 4, 8 and 16 ranks (those up to the machine's cores, unless named), launch to exit, the
+speed-up and efficiency against one rank, and whether every dataset is identical to one rank's.
+``--levels 160`` makes the map 4,000 cells (160 amplitude levels in place of 40)."""
+import argparse
 import os
 import sys
 import tempfile
 from pathlib import Path
+
+import yaml
 
 from .markdown import table
 from .throughput import STUDY, _launch, _same, mpiexec
@@ -41,17 +45,30 @@ def rows(measured, cells):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    ranks = [int(k) for k in argv] or default_ranks()
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.scaling",
+                                     description=__doc__.split("\n\n")[0].replace("``", "`"))
+    parser.add_argument("ranks", nargs="*", type=int, help="rank counts (default: "
+                        f"{', '.join(map(str, RANKS))} up to the cores)")
+    parser.add_argument("--levels", type=int, help="amplitude levels of the map (default 40)")
+    args = parser.parse_args(argv)
+    ranks = args.ranks or default_ranks()
     launcher = mpiexec()
     if launcher is None:
         print("benchmarks.scaling: no mpiexec; nothing was run", file=sys.stderr)
         return 2
     from sweep.io.study_schema import load_study
-    measured = measure(STUDY, ranks, launcher)
-    print(f"`{STUDY.name}` on {os.cpu_count()} cores (speed-up against {ranks[0]} rank"
-          f"{'s' if ranks[0] > 1 else ''} times its count)\n")
-    print(table(HEADER, rows(measured, load_study(STUDY).n_cells)))
+    with tempfile.TemporaryDirectory(prefix="bench_scaling_study_") as tmp:
+        study = STUDY
+        if args.levels is not None:
+            raw = yaml.safe_load(STUDY.read_text())
+            raw["grid"]["amplitude"]["num"] = args.levels
+            study = Path(tmp) / STUDY.name
+            study.write_text(yaml.safe_dump(raw, sort_keys=False))
+        cells = load_study(study).n_cells
+        measured = measure(study, ranks, launcher)
+    print(f"`{STUDY.name}`, {cells:,} cells, on {os.cpu_count()} cores (speed-up against "
+          f"{ranks[0]} rank{'s' if ranks[0] > 1 else ''} times its count)\n")
+    print(table(HEADER, rows(measured, cells)))
     return 0
 
 

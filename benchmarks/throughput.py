@@ -46,8 +46,10 @@ def quick_study(raw, keep=2):
 
 
 def mpiexec():
-    """The mpiexec next to this Python (the venv's MPI), else the one on PATH, else None."""
-    return shutil.which("mpiexec", path=str(Path(sys.executable).parent)) or \
+    """The launcher named by ``$MPIEXEC``, else the mpiexec next to this Python (the venv's
+    MPI), else the one on PATH, else None."""
+    return os.environ.get("MPIEXEC") or \
+        shutil.which("mpiexec", path=str(Path(sys.executable).parent)) or \
         shutil.which("mpiexec")
 
 

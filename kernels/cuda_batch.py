@@ -15,7 +15,10 @@ run, a GPU or the CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``).
 import functools
 
 import numpy as np
-from numba import cuda
+
+if not hasattr(np, "row_stack"):   # numpy 2.5 removed it; numba-cuda 0.30 still overloads it
+    np.row_stack = np.vstack
+from numba import cuda  # noqa: E402  (after the shim)
 
 from . import api, codes
 from ._jit import launcher_rank

@@ -121,15 +121,20 @@ def first_process(environ=None):
 
 
 def _threads_off():
-    """One thread per rank: MPI is the only parallelism (numba, OpenMP, BLAS)."""
-    for var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS",
-                "MKL_NUM_THREADS"):
+    """One thread per rank: MPI is the only parallelism (numba, OpenMP, BLAS).
+
+    Where numba is imported already, its thread count is lowered in place and its variable
+    left alone: numba rereads the environment at every compilation and refuses a
+    ``NUMBA_NUM_THREADS`` that differs from the pool it launched."""
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ[var] = "1"
-    if "numba" in sys.modules:  # already configured: lower the threads actually used
-        try:
-            sys.modules["numba"].set_num_threads(1)
-        except (AttributeError, ValueError):
-            pass
+    if "numba" not in sys.modules:
+        os.environ["NUMBA_NUM_THREADS"] = "1"
+        return
+    try:
+        sys.modules["numba"].set_num_threads(1)
+    except (AttributeError, ValueError):
+        pass
 
 
 def world(environ=None):

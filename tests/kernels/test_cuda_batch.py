@@ -26,12 +26,11 @@ def test_simulator_runs_every_mode_as_the_cpu():
 @pytest.mark.slow
 def test_device_code_compiles_to_ptx(monkeypatch):
     """numba-cuda types, lowers and compiles the whole kernel for sm_90 (about 40 s)."""
+    from kernels import codes
+    from kernels.cuda_batch import _run_rows      # first: it shims numpy for numba-cuda
+    from kernels.state import WORK_DTYPE
     from numba import cuda, float64, from_dtype, int64
     import numba.cuda.dispatcher
-
-    from kernels import codes
-    from kernels.cuda_batch import _run_rows
-    from kernels.state import WORK_DTYPE
 
     class Device:                       # device functions ask the current GPU for its
         compute_capability = (9, 0)     # compute capability, even to compile only

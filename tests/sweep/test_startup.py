@@ -58,3 +58,18 @@ def test_cpu_s_is_the_simulation_alone(warm):
     first, second, call = map(float, out)
     assert first < 0.1 * call          # the first call also loaded the kernel
     assert first < 5 * second          # but its cpu_s did not count that
+
+
+def test_a_rank_with_numba_imported_still_compiles():
+    """Under MPI each rank runs one numba thread; where numba was imported (its pool sized
+    from ``NUMBA_NUM_THREADS=2``) before the runner says so, a later compilation (a cold
+    kernel cache) must not meet a changed ``NUMBA_NUM_THREADS``, which numba refuses."""
+    code = ("import numba\n"
+            "from sweep.runner import mpi\n"
+            "mpi._threads_off()\n"
+            "print(numba.njit(lambda x: x + 1)(1), numba.get_num_threads())\n")
+    env = {**os.environ, "NUMBA_NUM_THREADS": "2", "PYTHONPATH": str(ROOT)}
+    ran = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert ran.returncode == 0, ran.stderr[-2000:]
+    assert ran.stdout.split() == ["2", "1"]
