@@ -124,6 +124,12 @@ def compare(name, rows, rec):
         flips_gpu == 0 and within_noise(dt_gpu, dt_fused)
 
 
+def _device_name(device):
+    """The GPU's name (bytes in older numba-cuda, str in newer)."""
+    name = device.name
+    return name.decode() if isinstance(name, bytes) else name
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m benchmarks.gpu", description=__doc__.split(
         "\n\n")[0].replace("``", "`"))
@@ -144,12 +150,13 @@ def main(argv=None):
                                ("synthetic records", _rows(ENSEMBLE, cells=240 if args.quick
                                                            else None))):
         lines, ok = compare(name, cells, rec)
+        print(" | ".join(lines[0]), flush=True)   # each ensemble as soon as it is measured
         rows += lines
         met &= ok
     from numba import cuda
     text = "\n".join([
         "# The CUDA kernel against every CPU core", "",
-        f"{cuda.get_current_device().name.decode()} against {os.cpu_count()} CPU cores; "
+        f"{_device_name(cuda.get_current_device())} against {os.cpu_count()} CPU cores; "
         "compile and cache loading left out.  Status differences in brackets and the "
         "spread in brackets: the CPU kernel with contraction against without (the yardstick).",
         "", table(["ensemble", "cells", "CPU cells/s", "GPU cells/s", "GPU/CPU",

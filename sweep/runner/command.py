@@ -32,7 +32,8 @@ def parse_args(argv=None):
     parser.add_argument("--quiet", action="store_true", help="no progress and no summary")
     parser.add_argument("--chunk-size", type=positive_int, default=None, metavar="N",
                         help="cells per chunk (part file); default: about 16 chunks per rank, "
-                             f"at most {grid.MAX_CHUNK} cells")
+                             f"at most {grid.MAX_CHUNK} cells (on the GPU: a rank's share, "
+                             f"at most {grid.CUDA_CHUNK:,} cells)")
     parser.add_argument("--seed", type=int, default=grid.DEFAULT_SEED, metavar="N",
                         help="seed of the shuffled order of the cells (default %(default)s)")
     parser.add_argument("-o", "--output", default=None, metavar="PATH",

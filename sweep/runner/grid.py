@@ -26,6 +26,7 @@ from ..io.vocabulary import (AXES, COMPUTED, FIELD_DIMENSIONS, MU_PATHS,  # noqa
 
 MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seconds at worst
 CHUNKS_PER_RANK = 16  # default chunk size aims at this many chunks per rank (balance, resume)
+CUDA_CHUNK = 1 << 15  # GPU chunk at most: threads to fill a GPU, done well inside the rank watch
 
 
 # --- chunks ---------------------------------------------------------------------
@@ -39,9 +40,16 @@ def shuffled(n, seed=DEFAULT_SEED):
     return np.random.default_rng(seed).permutation(n).astype(np.int64)
 
 
-def default_chunk_size(n, size):
-    """Chunk size giving about ``CHUNKS_PER_RANK`` chunks per rank, at most ``MAX_CHUNK``."""
-    return max(1, min(MAX_CHUNK, math.ceil(n / (CHUNKS_PER_RANK * max(1, size)))))
+def default_chunk_size(n, size, backend="cpu"):
+    """Chunk size giving about ``CHUNKS_PER_RANK`` chunks per rank, at most ``MAX_CHUNK``; on
+    the GPU (``backend="cuda"``) a rank's whole share, at most ``CUDA_CHUNK`` (one launch).
+
+    A GPU launch lasts as long as its slowest cell, and a launch of a few dozen threads leaves
+    the GPU all but idle: a 60 s sweep cell alone on one GPU thread runs for seconds."""
+    size = max(1, size)
+    if backend == "cuda":
+        return max(1, min(CUDA_CHUNK, math.ceil(n / size)))
+    return max(1, min(MAX_CHUNK, math.ceil(n / (CHUNKS_PER_RANK * size))))
 
 
 class Chunks:

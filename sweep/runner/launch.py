@@ -134,9 +134,10 @@ def _open(study, options, parts):
     return lock
 
 
-def _deal(n, done, options, size):
-    """The :class:`Deal` of ``n`` cells less those ``done`` to ``size`` ranks."""
-    chunk_size = options.chunk_size or grid.default_chunk_size(n - len(done), size)
+def _deal(n, done, options, size, backend):
+    """The :class:`Deal` of ``n`` cells less those ``done`` to ``size`` ranks running on
+    ``backend``."""
+    chunk_size = options.chunk_size or grid.default_chunk_size(n - len(done), size, backend)
     return Deal(done, grid.plan(n, done, chunk_size, options.seed))
 
 
@@ -175,7 +176,7 @@ def _plan(comm, path, options):
             say(f"sweep.run: {study.name}: {refine_text(study)}; on {ranks}", file=sys.stderr)
     else:
         n = study.n_cells
-        first = _deal(n, parts.done_cells(), options, size)
+        first = _deal(n, parts.done_cells(), options, size, options.backend_of(study))
         if not options.quiet:
             say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {ranks}, chunks "
                 f"of {first.chunks.chunk_size}", file=sys.stderr)
@@ -251,7 +252,8 @@ class _Rounds:
         if index is None and self.first is not None:
             deal = self.first
         else:
-            deal = _deal(n, () if parts is None else parts.done_cells(), options, size)
+            deal = _deal(n, () if parts is None else parts.done_cells(), options, size,
+                         options.backend_of(self.study))
             if len(deal.done) and not options.quiet:
                 say(f"sweep.run: resuming round {index}: {len(deal.done)} of {n} cells "
                     f"already done in {parts.directory}", file=sys.stderr)

@@ -29,7 +29,8 @@ class RunOptions:
     quiet : bool
         No progress and no summary.
     chunk_size : int or None
-        Cells per chunk (part file); None: about ``grid.CHUNKS_PER_RANK`` chunks per rank.
+        Cells per chunk (part file); None: ``grid.default_chunk_size`` (about
+        ``grid.CHUNKS_PER_RANK`` chunks per rank; one per rank on the GPU).
     seed : int
         Seed of the shuffled order of the cells (the results do not depend on it).
     max_cells : int

@@ -13,6 +13,12 @@ pytest.importorskip("numba_cuda")
 ROOT = Path(__file__).resolve().parents[2]
 
 
+def test_the_runner_s_gpu_chunk_is_one_launch():
+    from kernels import cuda_batch
+    from sweep.runner import grid
+    assert grid.CUDA_CHUNK <= cuda_batch.BATCH
+
+
 def test_simulator_runs_every_mode_as_the_cpu():
     env = {**os.environ, "NUMBA_ENABLE_CUDASIM": "1", "NUMBA_DISABLE_JIT": "1",
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
