@@ -51,7 +51,7 @@ bench: install
 bench-gpu: install
 	$(PY) -m pip install --quiet -e '.[cuda]'
 	$(PY) -m benchmarks.gpu
-	$(PY) -m benchmarks.scaling
+	$(PY) -m benchmarks.scaling --levels 160
 
 # The paper's figures from our own simulations: Figs 3-5 (scenes), 8-16 (frequency sweeps),
 # 17 (closed forms), 18-21 (records), the rocking spectrum and fragility figures (one MPI job
