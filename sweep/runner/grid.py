@@ -45,7 +45,7 @@ def default_chunk_size(n, size, backend="cpu"):
     the GPU (``backend="cuda"``) a rank's whole share, at most ``CUDA_CHUNK`` (one launch).
 
     A GPU launch lasts as long as its slowest cell, and a launch of a few dozen threads leaves
-    the GPU all but idle: a 60 s sweep cell alone on one GPU thread runs for seconds."""
+    the GPU all but idle: one GPU thread runs a 60 s sweep cell for many seconds."""
     size = max(1, size)
     if backend == "cuda":
         return max(1, min(CUDA_CHUNK, math.ceil(n / size)))
