@@ -13,7 +13,7 @@ can say what changed:
 ``program``
     the package version and the sources that turn a cell into results (``PROGRAM_SOURCES``:
     the kernel, the body's scales, the input checks, the cell runner, the dataset's
-    variables).
+    variables, the part files' layout).
 """
 import hashlib
 import importlib.resources
@@ -25,10 +25,10 @@ from ..io import records
 from . import grid
 
 _ROOT = Path(__file__).resolve().parents[2]
-# Source files whose edit can change what a cell's part holds.
+# Source files whose edit can change what a cell's part holds, or how (the part's layout).
 PROGRAM_SOURCES = ("kernels/*.py", "sweep/bodies.py", "sweep/io/*.py", "sweep/io/formats/*.py",
                    "sweep/groundmotion/*.py",
-                   "sweep/runner/grid.py",
+                   "sweep/runner/grid.py", "sweep/runner/store.py", "sweep/runner/merged.py",
                    "sweep/runner/cells.py", "sweep/paper/criteria.py", "sweep/cf.py")
 _RECORD_KEYS = ("name", "path")
 _EXCITATIONS = ("horizontal", "vertical")

@@ -3,9 +3,10 @@
 Each finished chunk becomes one part file ``part-<first cell>.npz`` in ``<output>.parts/``,
 written under a temporary name, flushed to disk and renamed (``os.replace`` is atomic): a part
 either exists whole or not at all, whatever moment a run is killed.  A part holds the ``cell``
-ids it covers, so a run resumes from whatever parts exist with any chunk size and rank count.
-``manifest.json`` records the fingerprint of the study's inputs (``runner.fingerprint``: the
-study, the content of its record files, the program) and every part carries it too: parts of
+ids it covers, so a run resumes from whatever parts exist with any chunk size and rank count,
+and their variables packed in one array (``merged.packed``).  ``manifest.json`` records the
+fingerprint of the study's inputs (``runner.fingerprint``: the study, the content of its record
+files, the program) and every part carries it too: parts of
 other inputs are refused with what changed, and a part that disagrees with the manifest stops
 the merge, never a mixed dataset.  A refine study keeps the parts of each round in a folder of
 its own (``round-000/``, ``round-001/``, ...).  The merge reads the parts a group of
@@ -29,7 +30,7 @@ import numpy as np
 from .. import cf
 from ..io.files import TMP_MARK, replacing, write_atomic
 from . import fingerprint
-from .merged import MergedParts, placeholder
+from .merged import MergedParts, packed, placeholder
 from .mpi import JobFailure
 
 MANIFEST = "manifest.json"
@@ -170,7 +171,8 @@ class PartStore:
         """Write one chunk's arrays (``cells.run_chunk``) as a part file, atomically, with the
         fingerprint of the run's inputs."""
         name = f"part-{int(np.min(arrays['cell'])):09d}.npz"
-        stamped = {**arrays, "fingerprint": np.array(self.stamp or "")}
+        stamped = {"cell": arrays["cell"], "cells": packed(arrays),
+                   "fingerprint": np.array(self.stamp or "")}
         write_atomic(self.directory / name, lambda f: np.savez(f, **stamped))
         return self.directory / name
 

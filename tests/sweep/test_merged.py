@@ -46,6 +46,20 @@ def test_streamed_write_is_the_in_memory_write(study, whole, tmp_path, divisor, 
     assert sorted(p.name for p in tmp_path.iterdir()) == ["memory.nc", "parts", "streamed.nc"]
 
 
+def test_a_part_is_three_arrays_its_cells_packed_exactly(study, whole, tmp_path):
+    """A part is read as three arrays (cell ids, fingerprint, one structured array of every
+    variable), not one per variable; packing keeps every value, dtype and shape."""
+    parts = _parts(study, whole, tmp_path / "parts", chunk_size=study.n_cells)
+    (path,) = parts.parts()
+    with np.load(path, allow_pickle=False) as npz:
+        assert sorted(npz.files) == ["cell", "cells", "fingerprint"]
+        cells = npz["cells"]
+    assert cells.dtype.names == tuple(cf.VARIABLES)
+    for name in cf.VARIABLES:
+        assert cells[name].dtype == whole[name].dtype
+        np.testing.assert_array_equal(cells[name], whole[name])
+
+
 def test_merged_parts_hold_one_group_and_read_only_its_keys(study, whole, tmp_path):
     n = study.n_cells
     parts = _parts(study, whole, tmp_path / "parts")
