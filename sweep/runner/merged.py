@@ -25,12 +25,13 @@ def cell_bytes(name):
 
 
 def packed(arrays):
-    """The variables of ``cf.VARIABLES`` in ``arrays`` (first axis = cells) as one structured
-    array with a field per variable, in their order: what a part file holds as ``cells``."""
-    dtype = np.dtype([(name, arrays[name].dtype, arrays[name].shape[1:])
-                      for name in cf.VARIABLES])
-    out = np.empty(len(arrays["cell"]), dtype)
-    for name in cf.VARIABLES:
+    """The variables of ``cf.VARIABLES`` that ``arrays`` holds (first axis = cells; a chunk's
+    result holds them all) as one structured array with a field per variable, in their
+    order: what a part file holds as ``cells``."""
+    names = [name for name in cf.VARIABLES if name in arrays]
+    out = np.empty(len(arrays["cell"]), [(name, arrays[name].dtype, arrays[name].shape[1:])
+                                         for name in names])
+    for name in names:
         out[name] = arrays[name]
     return out
 
