@@ -1,7 +1,7 @@
 """The cells of a run's part files, read one group of variables at a time.
 
 A part file holds a chunk's variables packed into one structured array, ``cells``
-(:func:`packed`): an ``.npz`` reads its arrays one by one, at about 0.07 ms each, so one
+(:func:`packed`): an ``.npz`` reads its arrays one by one, at about 0.08 ms each, so one
 array in place of one per variable makes a part about five times quicker to read.
 Rank 0 never holds every variable of every cell at once: the variables of ``cf.VARIABLES``
 are cut, in their order, into groups whose full arrays for all cells fit in ``BUDGET``
