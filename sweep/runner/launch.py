@@ -470,7 +470,8 @@ def _run(comm, path, options, state):
     rounds = _Rounds(comm, study, options, "sweep.run", parts, first) if rank == 0 else None
     result = _compute(comm, study, options, rounds)
     if rank == 0:
-        said = result if study.refine else result.read(SUMMARY_VARIABLES)  # parts go in _write
+        # the summary's variables from the group the write reads first (the parts go in _write)
+        said = result if study.refine else {name: result[name] for name in SUMMARY_VARIABLES}
         _write(study, result, options.command_line(size), plan.stamp, parts)
         timeline = Timeline.of(t_start, rounds.stats, time.time())
         if study.refine:

@@ -280,7 +280,8 @@ def write_merged(study, merged, path, *, history=None, attrs=None):
     xarray writes the whole file, its first group of variables read (``merged.groups``) and
     the others as placeholders (``merged.placeholder``): the file's variables, order, encoding
     and attributes are those of :func:`write_netcdf`.  netCDF4 then writes each other group
-    into its variables, read one group at a time.
+    into its variables, read one group at a time (``merged`` holds one group: the first stays
+    held until the second is read, so a summary of its variables costs no further read).
 
     Parameters
     ----------
@@ -298,7 +299,7 @@ def write_merged(study, merged, path, *, history=None, attrs=None):
         written = _write_first(study, merged, tmp, history, attrs or {})
         with netCDF4.Dataset(tmp, "a") as nc:
             for group in merged.groups[1:]:
-                _fill(nc, merged.read([name for name in group if name in written]))
+                _fill(nc, {name: merged[name] for name in group if name in written})
     return Path(path)
 
 
@@ -319,8 +320,8 @@ def _no_chunk_cache():
 def _write_first(study, merged, tmp, history, attrs):
     """Write the dataset with the first group of variables read and placeholders for the
     others; returns the names of its data variables (an axis's own result is a coordinate)."""
-    first = merged.read(merged.groups[0])
-    arrays = {name: first[name] if name in first else placeholder(name, merged.n_cells)
+    first = merged.groups[0]   # held by ``merged`` (read once, also for the summary)
+    arrays = {name: merged[name] if name in first else placeholder(name, merged.n_cells)
               for name in cf.VARIABLES}
     ds = cf.to_dataset(study, arrays, history=history)
     ds.attrs.update(attrs)
