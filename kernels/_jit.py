@@ -17,12 +17,16 @@ Python wrapper it gives every function compiled on its own.  A function called f
 compiled code is compiled once per argument types, not once more for each constant it is
 passed.
 
-Reference counts: numba counts a reference each time compiled code receives an array that
-owns its memory or takes one out of a tuple, with an atomic operation.  Arrays that are
-fields of one record allocation (``state.WORK_DTYPE``) or module constants own nothing and
-are passed for free; the kernel keeps its buffers there (the steady-rocking scene counts
-85,000 references with its buffers as separate arrays, 8,800 with them in one record), and
-the floor's record buffer goes on as a view without its memory record (``state.borrowed``).
+Reference counts: numba counts a reference each time compiled code receives an array or
+takes one out of a tuple (a call of ``NRT_incref`` and ``NRT_decref``, atomic where the array
+owns memory); a step passes a dozen arrays to its right-hand sides, so the calls took 12 %
+of a sweep-map cell even with every buffer a field of one record (``state.WORK_DTYPE``),
+which owns nothing.  The kernel therefore compiles without numba's runtime (``_nrt=False``):
+no function counts references, and none may allocate or hand an array to Python.  The few
+that do (``state.new_work``, ``driver.run_cells``, ``tableaus.tableau``, helpers outside
+the step loop) say so with ``jit(runtime=True)``, as must every compiled caller that keeps
+an array they allocate (it would never be freed otherwise).  numba refuses to compile an
+allocation without the runtime; an array returned to Python without it crashes.
 
 The cache.  numba's cache notices edits of a function's own file only, not of the files it
 calls, so the compiled code is kept in a folder named after the digest of every kernel
@@ -81,11 +85,13 @@ COMPILE_SECONDS = 15  # about the CPU time of the first compile of a scene and a
 _RANK_VARIABLES = ("PMI_RANK", "OMPI_COMM_WORLD_RANK", "PMIX_RANK", "SLURM_PROCID")
 
 
-def jit(func=None, **overrides):
-    """``numba.njit`` with the project's options (usable bare or with overrides)."""
+def jit(func=None, runtime=False, **overrides):
+    """``numba.njit`` with the project's options (usable bare or with overrides); a function
+    that allocates arrays, keeps one that another allocated or returns one to Python takes
+    ``runtime=True``: numba's runtime and its reference counts, off for the rest."""
     if func is None:
-        return lambda f: jit(f, **overrides)
-    options = {**_OPTIONS, **overrides}
+        return lambda f: jit(f, runtime=runtime, **overrides)
+    options = {**_OPTIONS, "_nrt": runtime, **overrides}
     if options.get("inline") == "always" and func.__name__ not in IR_INLINED:
         del options["inline"]
         options["forceinline"] = True

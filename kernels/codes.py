@@ -20,9 +20,10 @@ N_MODES = 6
 # --- the full state q = (x, y, theta, u, v, omega) of G relative to the floor (PHYSICS 1.1)
 IX, IY, ITHETA, IU, IV, IOMEGA = range(6)
 N_STATE = 6
-# the mode's contact: corner s (-1 left, +1 right), slip direction sigma, pivot or rest x
-CTX_S, CTX_SIGMA, CTX_X = range(3)
-N_CTX = 3
+# the mode's contact: corner s (-1 left, +1 right), slip direction sigma, pivot or rest x;
+# and the floor acceleration last computed: its time, a_x, a_y and 1 once there is one
+CTX_S, CTX_SIGMA, CTX_X, CTX_FLOOR_T, CTX_FLOOR_X, CTX_FLOOR_Y, CTX_FLOOR_HELD = range(7)
+N_CTX = 7
 
 # --- end status of a scene ------------------------------------------------------------------
 # TIME_BUDGET: a watchdog stopped the scene (``api.run_cells(..., budget=)``); INVALID_SCENE:

@@ -32,7 +32,7 @@ from .history import hold, sample_step
 from .integrate import FIRST_STEP, fit_dense, next_step_size, step
 from .motion import from_full, n_dof, rhs, to_full
 from .rest_skipping import rest_exit, rest_threshold
-from .state import Step, borrowed, new_work, scene_of
+from .state import Step, new_work, scene_of
 from .tableaus import tableau
 from .tolerances import (BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, RETRY_SHRINK,
                          THRESHOLD_NUDGE)
@@ -120,7 +120,6 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     PHYSICS.md sections 1-3; DESIGN.md section 3.
     """
     scene = scene_of(row)
-    rec = borrowed(rec)               # passed to every right-hand side: count no references
     body, contact, floor, solver, _ = scene
     method = int(solver.method)
     adaptive = method == ADAPTIVE     # the step size is controlled
@@ -185,7 +184,7 @@ def run_scene(row, rec, res, log, hist, ctl, work):
         if not adaptive:
             dt_next = solver.dt
         dt = min(dt_next, solver.max_step, t_end - t, t_brk - t)
-        err = step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
+        err = step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
         steps += 1
         if not _finite(z_new, n):
             if adaptive and dt > MIN_RETRY_DT:
@@ -202,19 +201,19 @@ def run_scene(row, rec, res, log, hist, ctl, work):
             err_old = max(err, ERR_FLOOR)
 
         taken = Step(mode, n, t, dt, z, z_new, K, end, D)
-        fit_dense(tab, taken)
+        fit_dense(method, taken)
         k_e, x_e = first_event(taken, ctx, scene, rec, values, scratch)
         if k_e >= 0:
             dt = x_e * dt            # step again, exactly to the event
             if dt > 0.0:
-                step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
+                step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
                 dt += polish(k_e, Step(mode, n, t, dt, z, z_new, K, end, D), ctx, scene,
                              rec, scratch)
             else:
                 for k in range(n):
                     z_new[k] = z[k]
             taken = Step(mode, n, t, dt, z, z_new, K, end, D)
-            fit_dense(tab, taken)
+            fit_dense(method, taken)
         nh = sample_step(hist, nh, taken, ctx, scene, rec, scratch)
         to_full(mode, z_new, ctx, body, q_end)
         if dt > 0.0:
@@ -277,15 +276,19 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     return nlog, nh
 
 
-@jit
+@jit(runtime=True)
 def run_cells(rows, rec, results, ctl):
     """Run every scene row of ``rows`` (n records of ``codes.SCENE_DTYPE``) into
-    ``results`` (n records of ``codes.RESULT_DTYPE``), writing the index of the running cell to ``ctl[CTL_CELL]`` (n
-    once done) for a watchdog thread, which may stop it (see ``run_scene``)."""
+    ``results`` (n records of ``codes.RESULT_DTYPE``), writing the index of the running
+    cell to ``ctl[CTL_CELL]`` (n once done) for a watchdog thread, which may stop it (see
+    ``run_scene``).  One set of buffers serves every scene, zeroed before each; ``buffers``
+    is used in every pass, so that it outlives each scene (its record holds no reference)."""
     log = np.zeros((0, N_LOG))
     hist = np.zeros((0, N_HIST))
+    buffers = new_work()
+    work = buffers[0]
     for i in range(rows.shape[0]):
         ctl[CTL_CELL] = i
-        buffers = new_work()
-        run_scene(rows[i], rec, results[i], log, hist, ctl, buffers[0])
+        buffers.view(np.uint8)[:] = 0
+        run_scene(rows[i], rec, results[i], log, hist, ctl, work)
     ctl[CTL_CELL] = rows.shape[0]

@@ -13,7 +13,7 @@ at x = RISE_X of the sample (it left with zero rate) is first searched for a pos
 """
 from ._jit import jit
 from .codes import ROTATION_JUMP, SLIDE, TRANSLATION_JUMP
-from .events import event_value, event_values, n_events
+from .events import angle_event, angle_value, event_value, event_values, n_events
 from .integrate import dense
 from .motion import to_full
 from .roots import brent, peak_above_zero
@@ -24,13 +24,22 @@ END_ONLY = (1.0, 1.0, 1.0)                # ... and when it does not
 
 
 @jit(inline="always")
+def _value_of(k, mode, t, z, ctx, scene, rec, q, g):
+    """Event function k at the compact state z (q, g: scratch for the full state and the
+    event values); theta alone where the event needs no more (z[0] is theta there)."""
+    if angle_event(k, mode):
+        return angle_value(k, z[0], ctx, scene)
+    to_full(mode, z, ctx, scene.body, q)
+    return event_value(k, mode, t, q, ctx, scene, rec, g)
+
+
+@jit(inline="always")
 def _value_at(x, args):
     """Event function k at the fraction x of the step (args = (k, step, ctx, scene, rec, z,
     q, g): scratch for the compact and the full state and the event values)."""
     k, step, ctx, scene, rec, z, q, g = args
     dense(step, x, z)
-    to_full(step.mode, z, ctx, scene.body, q)
-    return event_value(k, step.mode, step.t + x * step.dt, q, ctx, scene, rec, g)
+    return _value_of(k, step.mode, step.t + x * step.dt, z, ctx, scene, rec, q, g)
 
 
 @jit(inline="always")
@@ -110,13 +119,11 @@ def polish(k, step, ctx, scene, rec, scratch):
     f = step.K[step.end]
     t = step.t + dt
     zbuf, q, g = scratch.z, scratch.q, scratch.g
-    to_full(mode, z, ctx, scene.body, q)
-    g0 = event_value(k, mode, t, q, ctx, scene, rec, g)
+    g0 = _value_of(k, mode, t, z, ctx, scene, rec, q, g)
     delta = POLISH_DELTA * dt
     for j in range(step.n):
         zbuf[j] = z[j] + delta * f[j]
-    to_full(mode, zbuf, ctx, scene.body, q)
-    slope = (event_value(k, mode, t + delta, q, ctx, scene, rec, g) - g0) / delta
+    slope = (_value_of(k, mode, t + delta, zbuf, ctx, scene, rec, q, g) - g0) / delta
     d = -g0 / slope if slope != 0.0 else 0.0
     if not abs(d) < POLISH_MAX * dt:
         return 0.0

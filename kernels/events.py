@@ -10,8 +10,9 @@ where it lies inside a step, ``event_search``.
 from ._jit import jit
 from .codes import (CTX_S, CTX_SIGMA, IOMEGA, ITHETA, IU, IY, ROTATION, ROTATION_JUMP, SLIDE,
                     SLIDE_ROTATION, TRANSLATION_JUMP)
-from .ground import G, ground
-from .motion import corner, corner_velocity, rotation_dynamics, slide_rotation_dynamics
+from .ground import G
+from .motion import (corner, corner_velocity, floor_at, rotation_dynamics,
+                     slide_rotation_dynamics)
 
 # event indices per mode
 EV_IMPACT, EV_LIFTOFF, EV_SLIP, EV_OVERTURN, EV_PAINLEVE = range(5)   # rotation modes
@@ -42,7 +43,7 @@ def event_values(mode, t, q, ctx, scene, rec, out):
     theta_over = scene.solver.theta_over
     s = ctx[CTX_S]
     if mode == ROTATION or mode == SLIDE_ROTATION:
-        a_x, a_y = ground(t, scene.floor, rec)
+        a_x, a_y = floor_at(t, ctx, scene, rec)
         g_e = G + a_y
         out[EV_IMPACT] = -s * q[ITHETA]
         out[EV_OVERTURN] = theta_over - abs(q[ITHETA])
@@ -59,7 +60,7 @@ def event_values(mode, t, q, ctx, scene, rec, out):
             out[EV_PAINLEVE] = D
     elif mode == SLIDE:
         out[EV_STOP] = ctx[CTX_SIGMA] * q[IU]
-        out[EV_FREE_FALL] = G + ground(t, scene.floor, rec)[1]
+        out[EV_FREE_FALL] = G + floor_at(t, ctx, scene, rec)[1]
     elif mode == TRANSLATION_JUMP:
         out[EV_GAP_L] = q[IY] - body.h
     elif mode == ROTATION_JUMP:
@@ -68,16 +69,29 @@ def event_values(mode, t, q, ctx, scene, rec, out):
         out[EV_JUMP_OVERTURN] = theta_over - abs(q[ITHETA])
 
 
+@jit(inline="always")
+def angle_event(k, mode):
+    """Whether event k of the mode is a function of theta alone: impact and overturning of
+    the rocking modes, whose compact state starts with theta."""
+    return (mode == ROTATION or mode == SLIDE_ROTATION) and (k == EV_IMPACT or k == EV_OVERTURN)
+
+
+@jit(inline="always")
+def angle_value(k, theta, ctx, scene):
+    """Event function k of a rocking mode that ``angle_event`` names, at the angle theta."""
+    if k == EV_IMPACT:
+        return -ctx[CTX_S] * theta
+    return scene.solver.theta_over - abs(theta)
+
+
 @jit
 def event_value(k, mode, t, q, ctx, scene, rec, scratch):
     """Event function k alone; only lift-off, the onset of slip, the Painleve condition and
     free fall need the floor motion and the forces."""
     body, theta_over = scene.body, scene.solver.theta_over
+    if angle_event(k, mode):
+        return angle_value(k, q[ITHETA], ctx, scene)
     if mode == ROTATION or mode == SLIDE_ROTATION:
-        if k == EV_IMPACT:
-            return -ctx[CTX_S] * q[ITHETA]
-        if k == EV_OVERTURN:
-            return theta_over - abs(q[ITHETA])
         if k == EV_SLIP and mode == SLIDE_ROTATION:
             return ctx[CTX_SIGMA] * corner_velocity(q, ctx[CTX_S], body)[0]
     elif mode == ROTATION_JUMP:

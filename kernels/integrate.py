@@ -1,19 +1,24 @@
-"""One explicit Runge-Kutta step of any ``Tableau`` on a mode's compact state, its dense
-output, and the step-size controller.
+"""One explicit Runge-Kutta step on a mode's compact state, its dense output, and the
+step-size controller.
 
-Stage times are capped at ``t_lim`` so that the floor is always evaluated on the near side
-of a discontinuity of its motion.  On entry K[0] holds f(t, z); on exit K[stages] holds
+``step`` and ``fit_dense`` run the method's ``Tableau`` (``tableaus``) as a module constant,
+so that its coefficients are constants of the compiled code: the stage sums are unrolled
+and their zero terms dropped (a new method is a new tableau and a branch in both).  Stage
+times are capped at ``t_lim`` so that the floor is always evaluated on the near side of a
+discontinuity of its motion.  On entry K[0] holds f(t, z); on exit K[stages] holds
 f(t + dt, z_new), which the next step reuses and the dense output needs.  ``fit_dense``
 turns a taken step into the coefficients of its dense output once, so that each of the
 many evaluations inside it (samples, event and turning-point roots) is a Horner scheme.
-``dense`` is compiled into its callers (``inline="always"``); ``step`` is not: compiled into the driver's
-two call sites it saves another 15 % of a steady-rocking scene but costs 10 s more of the
-first compile.
+``dense`` is compiled into its callers (``inline="always"``); ``step`` is not: compiled
+into the driver's two call sites it saves another 15 % of a steady-rocking scene but costs
+10 s more of the first compile.
 """
 import math
 
 from ._jit import jit
+from .codes import ADAPTIVE
 from .motion import rhs
+from .tableaus import DOPRI5, RK4
 
 SAFETY = 0.9          # step-size controller (Hairer, Norsett & Wanner II.4)
 MIN_FACTOR = 0.2      # never shrink the step by more than this factor at once
@@ -24,25 +29,36 @@ DENSE_DEGREE = 4      # degree in the step fraction of the dense output (DOPRI5'
 
 
 @jit
-def step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new):
-    """Advance the compact state z (n entries) of ``mode`` by dt with the tableau tab.
+def step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new):
+    """Advance the compact state z (n entries) of ``mode`` by dt with the method's tableau.
 
     Fills z_new and the stages K; returns the error norm (scaled RMS of the embedded
     estimate, accept when <= 1), 0 for a tableau without one.
     """
+    if method == ADAPTIVE:
+        return _step(DOPRI5, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
+    return _step(RK4, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
+
+
+@jit(inline="always")
+def _step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new):
+    """``step`` with the tableau tab, a module constant, so that its coefficients are
+    constants of the compiled code; a zero coefficient adds nothing and is skipped."""
     A, B, C, E = tab.A, tab.B, tab.C, tab.E
     stages = tab.stages
     for s in range(1, stages):
         for k in range(n):
             acc = 0.0
             for j in range(s):
-                acc += A[s, j] * K[j, k]
+                if A[s, j] != 0.0:
+                    acc += A[s, j] * K[j, k]
             z_stage[k] = z[k] + dt * acc
         rhs(mode, min(t + C[s] * dt, t_lim), z_stage, ctx, scene, rec, K[s])
     for k in range(n):
         acc = 0.0
         for j in range(stages):
-            acc += B[j] * K[j, k]
+            if B[j] != 0.0:
+                acc += B[j] * K[j, k]
         z_new[k] = z[k] + dt * acc
     rhs(mode, min(t + dt, t_lim), z_new, ctx, scene, rec, K[stages])
     if E.size == 0:
@@ -52,7 +68,8 @@ def step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new):
     for k in range(n):
         e = 0.0
         for j in range(stages + 1):
-            e += E[j] * K[j, k]
+            if E[j] != 0.0:
+                e += E[j] * K[j, k]
         sc = atol + rtol * max(abs(z[k]), abs(z_new[k]))
         e = dt * e / sc
         err2 += e * e
@@ -60,20 +77,34 @@ def step(tab, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new):
 
 
 @jit
-def fit_dense(tab, step):
+def fit_dense(method, step):
     """Fill step.D with the dense output of a taken ``Step`` as a polynomial in the step
-    fraction x, z(x) = z + x (D[0] + x (D[1] + x (D[2] + x D[3]))): from the tableau's
-    interpolant P, D[m] = dt sum_j P[j, m] K[j], or, without one, the cubic Hermite
-    interpolant of the end values and slopes (D[3] = 0)."""
-    P, K, z, z_new, D, n, dt = tab.P, step.K, step.z, step.z_new, step.D, step.n, step.dt
-    if P.shape[0] > 0:
+    fraction x, z(x) = z + x (D[0] + x (D[1] + x (D[2] + x D[3]))): from the interpolant P
+    of the method's tableau, D[m] = dt sum_j P[j, m] K[j], or, without one, the cubic
+    Hermite interpolant of the end values and slopes (D[3] = 0)."""
+    if method == ADAPTIVE:
+        _fit_interpolant(DOPRI5.P, step)
+    else:
+        _fit_hermite(step)
+
+
+@jit(inline="always")
+def _fit_interpolant(P, step):
+    """D from the interpolant P, a module constant (zero coefficients skipped)."""
+    K, D, n, dt = step.K, step.D, step.n, step.dt
+    for k in range(n):                  # the loops over constants inside, to be unrolled
         for m in range(DENSE_DEGREE):
-            for k in range(n):
-                acc = 0.0
-                for j in range(P.shape[0]):
+            acc = 0.0
+            for j in range(P.shape[0]):
+                if P[j, m] != 0.0:
                     acc += P[j, m] * K[j, k]
-                D[m, k] = dt * acc
-        return
+            D[m, k] = dt * acc
+
+
+@jit(inline="always")
+def _fit_hermite(step):
+    """D of the cubic Hermite interpolant of the step's end values and slopes."""
+    K, z, z_new, D, n, dt = step.K, step.z, step.z_new, step.D, step.n, step.dt
     K_end = K[step.end]
     for k in range(n):
         d0 = dt * K[0, k]

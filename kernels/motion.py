@@ -15,7 +15,8 @@ rotation_jump      x, y, theta, u, v, w    -
 
 The full state is ``q = (x, y, theta, u, v, omega)`` (G relative to the floor, y = h when
 flat).  ``ctx`` holds the contact corner sign s (-1 left, +1 right), the slip direction
-sigma and the pivot (rotation) or rest position x.  theta > 0 is rotation about the left
+sigma and the pivot (rotation) or rest position x, and the floor acceleration last
+computed (``floor_at``).  theta > 0 is rotation about the left
 corner, which a floor acceleration to the right drives.  Forces are per unit mass.  Each
 corner has its own half-base b_s (``half_base``: b1 left, b2 right, docs/bodies.md); the
 point s = 0 is the point of the base below G.
@@ -23,8 +24,9 @@ point s = 0 is the point of the base below G.
 import math
 
 from ._jit import jit
-from .codes import (CTX_S, CTX_SIGMA, CTX_X, IOMEGA, ITHETA, IU, IV, IX, IY, REST, ROTATION,
-                    ROTATION_JUMP, SLIDE, SLIDE_ROTATION, TRANSLATION_JUMP)
+from .codes import (CTX_FLOOR_HELD, CTX_FLOOR_T, CTX_FLOOR_X, CTX_FLOOR_Y, CTX_S, CTX_SIGMA,
+                    CTX_X, IOMEGA, ITHETA, IU, IV, IX, IY, REST, ROTATION, ROTATION_JUMP, SLIDE,
+                    SLIDE_ROTATION, TRANSLATION_JUMP)
 from .ground import G, ground
 
 
@@ -109,9 +111,21 @@ def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, body, mu):
 
 
 @jit(inline="always")
+def floor_at(t, ctx, scene, rec):
+    """``ground(t, scene.floor, rec)``, kept in ctx for the next call at the same t: a step
+    asks for the floor at its end twice (DOPRI5's last stage and its end slope) and the event
+    functions there once more, and a new mode asks three times at its start."""
+    if ctx[CTX_FLOOR_HELD] == 0.0 or ctx[CTX_FLOOR_T] != t:
+        ctx[CTX_FLOOR_X], ctx[CTX_FLOOR_Y] = ground(t, scene.floor, rec)
+        ctx[CTX_FLOOR_T] = t
+        ctx[CTX_FLOOR_HELD] = 1.0
+    return ctx[CTX_FLOOR_X], ctx[CTX_FLOOR_Y]
+
+
+@jit(inline="always")
 def rhs(mode, t, z, ctx, scene, rec, out):
     """Write dz/dt of the mode's compact state z into out."""
-    a_x, a_y = ground(t, scene.floor, rec)
+    a_x, a_y = floor_at(t, ctx, scene, rec)
     g_e = G + a_y
     body = scene.body
     contact = scene.contact

@@ -1,25 +1,20 @@
 """Named records the compiled code passes around (namedtuples of scalars and arrays).
 
 A scene comes to the compiled code as one record of ``codes.SCENE_DTYPE`` (fields by name,
-passed as one pointer).  ``scene_of`` makes the
-``Scene``: the ``Body`` (the corners' distances from G and the inertia) and the ``Contact``
-law (friction and restitution) beside the row's floor, solver and initial records.  The record samples a floor component may point into
-are one array shared by a chunk of scenes, passed beside the scene as ``rec``.  Arrays
-stay out of the scene on purpose: numba counts references to every array a compiled
-function receives or takes out of a record, and passes a record of many scalars as many
-arguments; in the step loop either would cost as much as the physics.
-``WORK_DTYPE`` holds every buffer of a scene in one allocation; a ``Step`` is one taken
-step, which the dense output, the event search and the extremes read.  ``WORK_DTYPE`` holds every
-buffer of a scene in one record, whose array fields carry no reference count.  SI units, per unit mass;
-b1, b2 are the distances from G to the corners along the base and h the height of G
-(PHYSICS.md 1.1, docs/bodies.md).
+passed as one pointer); ``scene_of`` makes its ``Scene``: the ``Body`` (the corners'
+distances from G and the inertia) and the ``Contact`` law (friction and restitution)
+beside the row's floor, solver and initial records.  The record samples a floor component
+may point into are one array shared by a chunk of scenes, passed beside the scene as
+``rec``.  Arrays stay out of the scene, and the scene is a record, not a tuple of fifty
+scalars: numba passes a tuple element by element, which in the step loop would cost as much
+as the physics.  ``WORK_DTYPE`` holds every buffer of a scene in one record (one
+allocation); a ``Step`` is one taken step, which the dense output, the event search and the
+extremes read.  SI units, per unit mass; b1, b2 are the distances from G to the corners
+along the base and h the height of G (PHYSICS.md 1.1, docs/bodies.md).
 """
 from collections import namedtuple
 
 import numpy as np
-from numba.core import cgutils
-from numba.extending import intrinsic
-from numba.np.arrayobj import make_array
 
 from ._jit import DISABLED, jit
 from .codes import LANDING_FLAT, N_CTX, N_MODES, N_STATE
@@ -59,15 +54,14 @@ values g computed on the way."""
 WORK_DTYPE = np.dtype([("q", "f8", (N_STATE,)), ("z", "f8", (N_STATE,)),
                        ("z_new", "f8", (N_STATE,)), ("z_stage", "f8", (N_STATE,)),
                        ("q_end", "f8", (N_STATE,)), ("K", "f8", (MAX_STAGES + 1, N_STATE)),
-                       ("D", "f8", (DENSE_DEGREE, N_STATE)), ("ctx", "f8", (N_CTX,)), ("values", VALUES_DTYPE),
+                       ("D", "f8", (DENSE_DEGREE, N_STATE)), ("ctx", "f8", (N_CTX,)),
+                       ("values", VALUES_DTYPE),
                        ("scratch", SCRATCH_DTYPE), ("extremes", "f8", (N_EXTREMES,)),
                        ("mode_time", "f8", (N_MODES,))])
 """The buffers of one scene, as one record: the full state q at the step's start and q_end
 at its end, the mode's compact state z and z_new, stage scratch, the stages K, the
-coefficients D of the dense output, the mode's
-contact ``ctx`` (``codes.CTX_*``), the event values, dense-output scratch, the running
-extremes and the time spent in each mode.  Its fields are arrays inside one allocation,
-which compiled code passes without counting references."""
+coefficients D of the dense output, the mode's contact ``ctx`` (``codes.CTX_*``), the event
+values, dense-output scratch, the running extremes and the time spent in each mode."""
 
 Step = namedtuple("Step", "mode n t dt z z_new K end D")
 Step.__doc__ = """One taken step of ``mode`` from t to t + dt: the compact states z and z_new
@@ -86,21 +80,7 @@ def scene_of(row):
                  row.floor, row.solver, row.initial)
 
 
-@intrinsic
-def borrowed(typingctx, array):
-    """borrowed(a): a view of the array a without its memory record, so that compiled code
-    passing it on counts no references (each count is an atomic operation, and the floor's
-    record buffer ``rec`` goes to every right-hand side and event function).  The caller
-    keeps a alive while the view is used."""
-    def codegen(context, builder, signature, args):
-        view = make_array(array)(context, builder, args[0])
-        view.meminfo = cgutils.get_null_value(view.meminfo.type)
-        view.parent = cgutils.get_null_value(view.parent.type)
-        return view._getvalue()
-    return array(array), codegen
-
-
-@jit
+@jit(runtime=True)
 def new_work():
     """The buffers of one scene, zeroed: a one-element array of ``WORK_DTYPE`` (keep it while
     its record, ``[0]``, is used)."""
@@ -108,10 +88,6 @@ def new_work():
 
 
 if DISABLED:
-    def borrowed(array):    # noqa: F811 -- plain Python counts no references
-        """The array itself (plain Python)."""
-        return array
-
     def new_work():         # noqa: F811 -- plain Python reads fields by name through recarray
         """The buffers of one scene, zeroed (plain Python)."""
         return np.zeros(1, WORK_DTYPE).view(np.recarray)

@@ -1,7 +1,7 @@
 """Explicit Runge-Kutta methods as data (scipy's names: C, A, B, E, P).
 
 A method is a ``Tableau``; ``integrate.step`` runs any of them, so a new method is a new
-tableau here and a name in ``codes.METHOD_NAMES``, not new code.  Stage s of a step is
+tableau here, a name in ``codes.METHOD_NAMES`` and a branch in ``integrate``, not new code.  Stage s of a step is
 f(t + C[s] dt, z + dt sum_j A[s, j] K[j]); z_new = z + dt sum_j B[j] K[j]; the stage row
 ``stages`` of K holds f(t + dt, z_new), which the next step reuses (FSAL), the error
 estimate weighs with the last entry of E and the dense output needs.
@@ -62,9 +62,13 @@ NO_P = np.zeros((0, 4))
 MAX_STAGES = 6        # the most stages of any method here (K has MAX_STAGES + 1 rows)
 
 
-@jit
+DOPRI5 = Tableau(DP_C, DP_A, DP_B, DP_E, DP_P, 5, 6)
+RK4 = Tableau(RK4_C, RK4_A, RK4_B, NO_E, NO_P, 4, 4)
+
+
+@jit(runtime=True)           # its arrays go to Python when it is called from there
 def tableau(method):
     """The ``Tableau`` of a method code (``codes.ADAPTIVE``, ``codes.FIXED``)."""
     if method == ADAPTIVE:
-        return Tableau(DP_C, DP_A, DP_B, DP_E, DP_P, 5, 6)
-    return Tableau(RK4_C, RK4_A, RK4_B, NO_E, NO_P, 4, 4)
+        return DOPRI5
+    return RK4

@@ -36,7 +36,7 @@ from .events import (EV_GAP_L, EV_JUMP_OVERTURN, EV_LIFTOFF, EV_OVERTURN, EV_PAI
                      EV_SLIP, EV_STOP)
 from .face_impact import face_impact, landing_impact
 from .ground import G, ground
-from .motion import (corner, corner_velocity, half_base, rotation_dynamics,
+from .motion import (corner, corner_velocity, floor_at, half_base, rotation_dynamics,
                      slide_rotation_dynamics, sliding_friction)
 from .tolerances import ROCKING_ROUNDOFF
 from .zeno import closing_speed, leaves, rocking_closes, stop_corner
@@ -235,7 +235,7 @@ def on_event(k, mode, t, q, ctx, scene, rec):
     the event was not an impact.
     """
     body, contact = scene.body, scene.contact
-    a_x, a_y = ground(t, scene.floor, rec)
+    a_x, a_y = floor_at(t, ctx, scene, rec)
     g_e = G + a_y
     s = ctx[CTX_S]
     sigma = ctx[CTX_SIGMA]

@@ -172,7 +172,7 @@ def floor_of_sine(frequency, phase, duration, span, modes):
                    f"floor of a linear building {modes} over a sine (closed form)")
 
 
-@jit
+@jit(runtime=True)
 def _sampled(g, rec, dt, n):
     """The ground component ``g`` (``codes.GROUND_DTYPE``) at the times k dt, k < n."""
     out = np.empty(n)

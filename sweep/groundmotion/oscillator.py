@@ -21,7 +21,7 @@ from kernels._jit import jit
 DAMPING = 0.05  # of the spectra of hazard curves and ground-motion models
 
 
-@jit
+@jit(runtime=True)
 def _response(p, dt, omega, zeta):
     """u and u' at the samples of p: the recursion of Chopra (2017) Table 5.2.1."""
     k = omega * omega

@@ -1,11 +1,14 @@
 """The numba policy of ``kernels._jit``: inlining left to LLVM, one compiled version per
-argument types, the cache folder keyed by the kernel's sources, one line before a compile."""
+argument types, no reference counts outside ``runtime=True``, the cache folder keyed by the
+kernel's sources, one line before a compile."""
 import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
+import numba
+import numpy as np
 import pytest
 
 from kernels import _jit, state
@@ -52,6 +55,31 @@ def test_one_version_per_argument_types():
 
     assert caller(1.0, 2) == 6.0
     assert len(add.signatures) == 1
+
+
+def test_reference_counts_only_with_the_runtime():
+    """Arrays pass between kernel functions without numba's reference counts (no call of
+    NRT_incref in the code); ``runtime=True`` counts them, and only it allocates."""
+    @_jit.jit(cache=False)
+    def total(a):
+        s = 0.0
+        for v in a:
+            s += v
+        return s
+
+    def outer(a, b):
+        return total(a) + total(b)
+
+    bare = _jit.jit(cache=False)(outer)
+    counted = _jit.jit(cache=False, runtime=True)(outer)
+    x = np.arange(4.0)
+    assert bare(x, x) == counted(x, x) == 12.0
+    assert "NRT_incref" not in "".join(bare.inspect_llvm().values())
+    assert "NRT_incref" in "".join(counted.inspect_llvm().values())
+    zeros = _jit.jit(cache=False, runtime=True)(lambda n: np.zeros(n))
+    assert zeros(3).tolist() == [0.0, 0.0, 0.0]
+    with pytest.raises(numba.core.errors.TypingError):
+        _jit.jit(cache=False)(lambda n: np.zeros(n))(3)
 
 
 def test_cache_folder_keyed_by_the_kernel_sources(tmp_path):

@@ -277,11 +277,11 @@ def test_error_estimate_is_fifth_power_of_step():
 
 # --- the kernel's dense output (integrate.dense) ---------------------------------------------
 
-def _dense_at(tab, z, z_new, K, dt, x):
+def _dense_at(method, z, z_new, K, dt, x):
     """integrate.dense on a ``Step`` built from one step of the test's loop."""
     n = z.size
-    step = Step(0, n, 0.0, dt, z, z_new, K, tab.stages, np.zeros((DENSE_DEGREE, n)))
-    fit_dense(tab, step)
+    step = Step(0, n, 0.0, dt, z, z_new, K, _tab(method).stages, np.zeros((DENSE_DEGREE, n)))
+    fit_dense(method, step)
     out = np.zeros(n)
     dense(step, x, out)
     return out
@@ -294,8 +294,8 @@ def test_dense_end_points(method):
     tab = _tab(method)
     z = np.array([1.0, 0.0])
     z_new, K = _rk_step(tab, _oscillator, 0.0, z, 0.1)
-    np.testing.assert_allclose(_dense_at(tab, z, z_new, K, 0.1, 0.0), z, rtol=0, atol=1e-15)
-    np.testing.assert_allclose(_dense_at(tab, z, z_new, K, 0.1, 1.0), z_new, rtol=0,
+    np.testing.assert_allclose(_dense_at(method, z, z_new, K, 0.1, 0.0), z, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(_dense_at(method, z, z_new, K, 0.1, 1.0), z_new, rtol=0,
                                atol=1e-15)
 
 
@@ -311,7 +311,7 @@ def test_dense_local_order(method, order):
     for dt in (0.2, 0.1, 0.05):
         z = np.array([1.0, 0.0])
         z_new, K = _rk_step(tab, _oscillator, 0.0, z, dt)
-        got = _dense_at(tab, z, z_new, K, dt, 0.5)
+        got = _dense_at(method, z, z_new, K, dt, 0.5)
         errs.append(np.linalg.norm(got - [math.cos(dt / 2), -math.sin(dt / 2)]))
     assert np.all(_observed_orders(errs) >= order - 0.5), errs
     assert errs[1] < (1e-6 if method == codes.ADAPTIVE else 1e-5)
