@@ -20,7 +20,6 @@ import threading
 import time
 import warnings
 from collections import namedtuple
-from contextlib import contextmanager
 
 from .. import cf
 from ..io import study_schema
@@ -352,17 +351,11 @@ def _interrupted(state, options):
         f"({options.command_line()})", file=sys.stderr)
 
 
-@contextmanager
-def _sigint_ignored():
-    """Ignore Ctrl-C for a moment (main thread only; the handler is restored after)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
+def _ignore_sigint():
+    """Ignore Ctrl-C from now on, the run being interrupted already (main thread only): a
+    second one must cut neither rank 0's line nor the way out."""
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _one_line(message, category, filename, lineno, file=None, line=None):
@@ -414,6 +407,7 @@ def run_status(comm, path, options):
     except Refused:  # said by rank 0
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:  # rank 0 said what is saved
+        mpi.leave_interrupted(comm)
         return EXIT_INTERRUPTED
     except mpi.JobFailure:  # one process: said in words (several ranks abort instead)
         return EXIT_FAILED
@@ -426,9 +420,9 @@ def _run_file(comm, path, options):
     try:
         _run(comm, path, options, state)
     except KeyboardInterrupt:
+        _ignore_sigint()
         if comm.Get_rank() == 0:
-            with _sigint_ignored():  # a second Ctrl-C must not cut the line
-                _interrupted(state, options)
+            _interrupted(state, options)
         raise
     finally:
         if state.lock is not None:

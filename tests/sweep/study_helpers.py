@@ -1,6 +1,7 @@
 """Small studies, a command-line runner and dataset helpers for the study-runner tests."""
 import copy
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -70,7 +71,15 @@ def wait_for_parts(process, parts_dir, n_parts, timeout=120.0):
         time.sleep(0.005)
 
 
+def sigint_default():
+    """For ``preexec_fn``: a child started from a shell's background job inherits SIGINT
+    ignored, and Python then leaves it ignored; give it the default, as a terminal would, so
+    that a test's SIGINT reaches it."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start(args, cwd, module="sweep.run"):
     """``python -m <module> args`` started in ``cwd`` (pipes for its output): the Popen."""
     return subprocess.Popen([PY, "-m", module, *map(str, args)], cwd=cwd, env=cli_env(),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=sigint_default)

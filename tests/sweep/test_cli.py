@@ -9,7 +9,7 @@ import time
 
 import pytest
 import yaml
-from study_helpers import PY, cli_env
+from study_helpers import PY, cli_env, sigint_default
 
 from sweep.cli import command, jsonable, print_json
 from sweep.io.exits import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED
@@ -67,19 +67,13 @@ def test_plot_reader_gone_before_it_writes(tmp_path):
     assert (tmp_path / "f.png").stat().st_size > 0  # the work was done before the print
 
 
-def _sigint_default():
-    """A child started from a shell's background job inherits SIGINT ignored, and Python then
-    leaves it ignored: give it the default, as a terminal would."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def test_ctrl_c_is_one_line(tmp_path):
     """SIGINT while the command waits for its input (a FIFO that no one writes yet)."""
     fifo = tmp_path / "bodies.yaml"
     os.mkfifo(fifo)
     child = subprocess.Popen([PY, "-m", "sweep.estimate", fifo], cwd=tmp_path, env=cli_env(),
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                             preexec_fn=_sigint_default)
+                             preexec_fn=sigint_default)
     deadline = time.monotonic() + 60
     while True:  # a non-blocking open for writing succeeds once the command opened it
         try:

@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from study_helpers import (PY, cli, cli_env, make_study, slow_study, wait_for_parts,
-                           without_run_attrs, write_study)
+from study_helpers import (PY, cli, cli_env, make_study, sigint_default, slow_study,
+                           wait_for_parts, without_run_attrs, write_study)
 
 from sweep.runner import store
 
@@ -123,7 +123,8 @@ def _slow_job(tmp_path, *extra):
     _, study = slow_study(tmp_path, 20.0)  # ~3 s on 2 ranks: stopped long before its end
     job = subprocess.Popen([MPIEXEC, "-n", "2", PY, "-m", "sweep.run", str(study),
                             "--chunk-size", "2", *extra], cwd=tmp_path, env=cli_env(),
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           preexec_fn=sigint_default)
     return study, job, store.parts_dir(tmp_path / "r.nc")
 
 
