@@ -32,6 +32,7 @@ from ..io.exits import EXIT_INTERRUPTED
 POLL = 0.02  # s between tests of a pending message or request
 DEAL_POLL = 0.001  # s between the dealer's tests for requests, and a rank's for its answer
 FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
+LEAVE_WAIT = 10.0  # s an interrupted rank waits for the others to be interrupted too
 TAG_PLAN, TAG_PROGRESS, TAG_TAKE, TAG_CHUNK = 11, 12, 13, 14
 WATCH_FLOOR = 300.0  # s of silence always allowed to a rank (sweep.run --rank-timeout)
 WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so far is stuck
@@ -232,19 +233,25 @@ def abort_on_exception(comm):
 
 
 def leave_interrupted(comm):
-    """End this rank now with status 130 (``io.exits.EXIT_INTERRUPTED``) after Ctrl-C, when
-    it is one of several ranks; serially, return.
+    """End this rank with status 130 (``io.exits.EXIT_INTERRUPTED``) after Ctrl-C, when it is
+    one of several ranks, once every rank is there or ``LEAVE_WAIT`` has passed; serially,
+    return.
 
     The interrupted ranks leave messages to each other unmatched (a request for a chunk, the
     chunk dealt in reply), and MPICH's ``MPI_Finalize`` at the interpreter's exit then ended
     rank 0 abnormally in about one run in four, so that ``mpiexec`` reported status 2 instead
-    of 130.  Nothing is left to do by then: the part files are written and the output's lock
-    is released; stdout and stderr are flushed here.
+    of 130; hence ``os._exit``.  The ranks meet first, so that none leaves (and has the
+    launcher end the others) before rank 0 has said what is saved.  Nothing else is left to
+    do by then: the part files are written and the output's lock is released.
     """
     if not is_mpi(comm):
         return
     sys.stdout.flush()
     sys.stderr.flush()
+    request = comm.Ibarrier()
+    end = time.monotonic() + LEAVE_WAIT
+    while not request.Test() and time.monotonic() < end:
+        time.sleep(POLL)
     os._exit(EXIT_INTERRUPTED)
 
 
