@@ -2,8 +2,8 @@
 step-size controller.
 
 ``step`` and ``fit_dense`` run the method's ``Tableau`` (``tableaus``) as a module constant,
-so that its coefficients are constants of the compiled code: the stage sums are unrolled
-and their zero terms dropped (a new method is a new tableau and a branch in both).  Stage
+so that its coefficients are constants of the compiled code, which skips the terms of zero
+coefficients (a new method is a new tableau and a branch in both).  Stage
 times are capped at ``t_lim`` so that the floor is always evaluated on the near side of a
 discontinuity of its motion.  On entry K[0] holds f(t, z); on exit K[stages] holds
 f(t + dt, z_new), which the next step reuses and the dense output needs.  ``fit_dense``

@@ -15,11 +15,11 @@ rotation_jump      x, y, theta, u, v, w    -
 
 The full state is ``q = (x, y, theta, u, v, omega)`` (G relative to the floor, y = h when
 flat).  ``ctx`` holds the contact corner sign s (-1 left, +1 right), the slip direction
-sigma and the pivot (rotation) or rest position x, and the floor acceleration last
-computed (``floor_at``).  theta > 0 is rotation about the left
-corner, which a floor acceleration to the right drives.  Forces are per unit mass.  Each
-corner has its own half-base b_s (``half_base``: b1 left, b2 right, docs/bodies.md); the
-point s = 0 is the point of the base below G.
+sigma, the pivot (rotation) or rest position x, and the floor acceleration last computed
+(``floor_at``).  theta > 0 is rotation about the left corner, which a floor acceleration to
+the right drives.  Forces are per unit mass.  Each corner has its own half-base b_s
+(``half_base``: b1 left, b2 right, docs/bodies.md); the point s = 0 is the point of the base
+below G.
 """
 import math
 
