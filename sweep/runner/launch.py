@@ -20,6 +20,7 @@ import threading
 import time
 import warnings
 from collections import namedtuple
+from contextlib import contextmanager
 
 from .. import cf
 from ..io import study_schema
@@ -351,11 +352,17 @@ def _interrupted(state, options):
         f"({options.command_line()})", file=sys.stderr)
 
 
-def _ignore_sigint():
-    """Ignore Ctrl-C from now on, the run being interrupted already (main thread only): a
-    second one must cut neither rank 0's line nor the way out."""
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+@contextmanager
+def _sigint_ignored():
+    """Ignore Ctrl-C for a moment (main thread only; the handler is restored after)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _one_line(message, category, filename, lineno, file=None, line=None):
@@ -420,9 +427,9 @@ def _run_file(comm, path, options):
     try:
         _run(comm, path, options, state)
     except KeyboardInterrupt:
-        _ignore_sigint()
         if comm.Get_rank() == 0:
-            _interrupted(state, options)
+            with _sigint_ignored():  # a second Ctrl-C must not cut the line
+                _interrupted(state, options)
         raise
     finally:
         if state.lock is not None:

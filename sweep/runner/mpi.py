@@ -16,6 +16,7 @@ hanging.  Rank 0 watches the others (:class:`Watch`): a rank silent for longer t
 naming it and the cells it held.
 """
 import os
+import signal
 import sys
 import threading
 import time
@@ -246,6 +247,8 @@ def leave_interrupted(comm):
     """
     if not is_mpi(comm):
         return
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C: no traceback now
     sys.stdout.flush()
     sys.stderr.flush()
     request = comm.Ibarrier()
