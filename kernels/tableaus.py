@@ -1,10 +1,10 @@
 """Explicit Runge-Kutta methods as data (scipy's names: C, A, B, E, P).
 
 A method is a ``Tableau``; ``integrate.step`` runs any of them, so a new method is a new
-tableau here, a name in ``codes.METHOD_NAMES`` and a branch in ``integrate``, not new code.  Stage s of a step is
-f(t + C[s] dt, z + dt sum_j A[s, j] K[j]); z_new = z + dt sum_j B[j] K[j]; the stage row
-``stages`` of K holds f(t + dt, z_new), which the next step reuses (FSAL), the error
-estimate weighs with the last entry of E and the dense output needs.
+tableau here, a name in ``codes.METHOD_NAMES`` and a branch in ``integrate``, not new code.
+Stage s of a step is f(t + C[s] dt, z + dt sum_j A[s, j] K[j]); z_new = z + dt sum_j B[j]
+K[j]; the stage row ``stages`` of K holds f(t + dt, z_new), which the next step reuses
+(FSAL), the error estimate weighs with the last entry of E and the dense output needs.
 
 * ``DOPRI5``: Dormand-Prince 5(4), the 4th-order dense output of scipy's RK45 (Dormand &
   Prince 1980; Hairer, Norsett & Wanner, Solving ODEs I, II.5).
