@@ -13,6 +13,7 @@ amplifies the last bit).  Statuses must be identical.  Writes a Markdown report
 (``-o``, default ``results/bench_gpu.md``); refuses, with exit status 2, without a GPU.
 """
 import argparse
+import collections
 import multiprocessing
 import os
 import sys
@@ -95,6 +96,15 @@ def differences(a, b):
     return int((a["status"] != b["status"]).sum()), np.abs(a["t_overturn"] - b["t_overturn"])[both]
 
 
+def status_changes(a, b):
+    """How the statuses of ``a`` differ from those of the CPU's ``b``: "3 overturned ->
+    budget_exhausted, ..." (most frequent first), or "none"."""
+    changed = a["status"] != b["status"]
+    pairs = collections.Counter(zip(b["status"][changed].tolist(), a["status"][changed].tolist()))
+    return ", ".join(f"{n} {codes.STATUS_NAMES[cpu]} -> {codes.STATUS_NAMES[other]}"
+                     for (cpu, other), n in pairs.most_common()) or "none"
+
+
 def _spread(dt):
     if dt.size == 0:
         return "no cell overturned in both"
@@ -111,16 +121,19 @@ def within_noise(dt_gpu, dt_fused):
 
 
 def compare(name, rows, rec):
-    """Table rows of one ensemble and whether the GPU met both criteria."""
+    """Table rows of one ensemble, a line saying how statuses differ, and whether the GPU
+    met both criteria."""
     cpu, wall_cpu = on_cpu(rows, rec)
     fused, _ = on_cpu(rows, rec, contract=True)
     gpu, wall_gpu = on_gpu(rows, rec)
     flips_gpu, dt_gpu = differences(gpu, cpu)
     flips_fused, dt_fused = differences(fused, cpu)
     n = rows.shape[0]
+    changes = (f"{name}: statuses CPU -> GPU: {status_changes(gpu, cpu)}; CPU -> CPU with "
+               f"contraction: {status_changes(fused, cpu)}.")
     return [[name, f"{n:,}", f"{n / wall_cpu:,.0f}", f"{n / wall_gpu:,.0f}",
              f"{wall_cpu / wall_gpu:.1f}x", f"{flips_gpu} ({flips_fused})",
-             f"GPU {_spread(dt_gpu)}; contraction {_spread(dt_fused)}"]], \
+             f"GPU {_spread(dt_gpu)}; contraction {_spread(dt_fused)}"]], changes, \
         flips_gpu == 0 and within_noise(dt_gpu, dt_fused)
 
 
@@ -145,13 +158,14 @@ def main(argv=None):
         return 2
     raw = yaml.safe_load(MAP.read_text())
     raw["grid"]["amplitude"]["num"] = 40 if args.quick else MAP_LEVELS
-    rows, met = [], True
+    rows, changes, met = [], [], True
     for name, (cells, rec) in (("map of 60 s sweeps", _rows(MAP, raw)),
                                ("synthetic records", _rows(ENSEMBLE, cells=240 if args.quick
                                                            else None))):
-        lines, ok = compare(name, cells, rec)
-        print(" | ".join(lines[0]), flush=True)   # each ensemble as soon as it is measured
+        lines, changed, ok = compare(name, cells, rec)
+        print(" | ".join(lines[0]), changed, sep="\n", flush=True)   # each as it is measured
         rows += lines
+        changes.append(changed)
         met &= ok
     from numba import cuda
     text = "\n".join([
@@ -161,7 +175,7 @@ def main(argv=None):
         "spread in brackets: the CPU kernel with contraction against without (the yardstick).",
         "", table(["ensemble", "cells", "CPU cells/s", "GPU cells/s", "GPU/CPU",
                    "statuses differing (contraction)", "|t_overturn GPU - CPU| [s]"], rows),
-        "", f"Statuses identical and times within the contraction noise: "
+        "", *changes, "", f"Statuses identical and times within the contraction noise: "
             f"{'yes' if met else 'NO'}.", ""])
     write_text(args.output, text)
     print(text)

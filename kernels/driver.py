@@ -136,6 +136,7 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     status = OK
     err_old = ERR_FLOOR
     t = 0.0
+    t_entry = 0.0                     # when the current mode was entered
     nlog = 0
     nh = 0
     impacts = 0
@@ -172,6 +173,7 @@ def run_scene(row, rec, res, log, hist, ctl, work):
                 t += THRESHOLD_NUDGE * max(1.0, t)
                 continue
             events += 1
+            t_entry = t
             if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
                 status = PAINLEVE
             continue
@@ -248,7 +250,9 @@ def run_scene(row, rec, res, log, hist, ctl, work):
         # --- the event: its law and the next mode (the mode table) -----------------------
         events += 1
         mode_old = mode
-        mode, s, sigma, status, flags = on_event(k_e, mode, t, q, ctx, scene, rec)
+        mode, s, sigma, status, flags = on_event(k_e, mode, t, q, ctx, scene, rec,
+                                                 t > t_entry)
+        t_entry = t
         if flags != NOT_AN_IMPACT:
             impacts += 1
             if flags & CLAMPED:

@@ -62,6 +62,21 @@ def test_wilson_and_paired_fractions():
     assert (stats.only_a, stats.only_b, stats.difference, stats.p_value) == (1, 1, 0.0, 1.0)
 
 
+def test_gpu_report_names_the_status_changes():
+    """Statuses of two runs of four cells: one overturned cell and one rocking cell ran out
+    of their budget in the second; counted per pair of names, the most frequent first."""
+    from benchmarks.gpu import status_changes
+    from kernels import codes
+    cpu = np.zeros(5, codes.RESULT_DTYPE)
+    other = np.zeros(5, codes.RESULT_DTYPE)
+    cpu["status"] = [codes.OVERTURNED, codes.OVERTURNED, codes.OK, codes.OVERTURNED, codes.OK]
+    other["status"] = [codes.BUDGET_EXHAUSTED, codes.BUDGET_EXHAUSTED, codes.BUDGET_EXHAUSTED,
+                       codes.OVERTURNED, codes.OK]
+    assert status_changes(other, cpu) == ("2 overturned -> budget_exhausted, "
+                                          "1 ok -> budget_exhausted")
+    assert status_changes(cpu, cpu) == "none"
+
+
 def test_quick_study_keeps_two_values_per_axis():
     raw = {"name": "m", "grid": {"a": {"start": 1, "stop": 2, "num": 40}, "b": [1, 2, 3],
                                  "c": {"values": [4, 5, 6]}}}

@@ -1,7 +1,11 @@
 """Numerically hard scenes (PHYSICS.md section 3): chatter near West's threshold, grazing,
 bouncing, friction around b/h in free rocking, the Painleve case, and earthquake records.
 """
+import json
 import math
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -313,3 +317,79 @@ def test_random_forced_scenes_finish():
         t_sim = r.t_overturn if r.overturned else 20.0
         assert sum(r.mode_time.values()) == pytest.approx(t_sim, abs=1e-9), n
     assert not bad, f"{len(bad)} scenes failed: {bad}"
+
+
+def _corner_at_cone_edge(excess):
+    """(scene, q, ctx) of a body rocking on its left corner (B = 0.1, H = 0.2, mu = 0.8)
+    under a constant a_x solved so that the corner's sticking force is at the edge of its
+    friction cone, |F_c| - mu N_c = ``excess`` (relative, either side), with the slip
+    velocity u of a slip in the direction sgn(V_cx) = +1 that has just ended (ctx)."""
+    from scipy.optimize import brentq
+
+    from kernels import codes
+    from kernels.api import scene_row
+    from kernels.motion import corner, rotation_dynamics
+    from kernels.state import scene_of
+    theta, omega, s, mu = 0.0233, -0.608, -1.0, 0.8
+
+    def cone(a_x):
+        body = scene_of.py_func(scene_row(scene(0.1, 0.2, mu=mu,
+                                                horizontal=pulse(a_x, 10.0)))).body
+        thdd, F, N = rotation_dynamics(theta, omega, s, a_x, G, body)
+        return abs(F) / (mu * N) - 1.0
+    edge = brentq(cone, -20.0, -10.0, xtol=1e-14)
+    a_x = brentq(lambda a: cone(a) - excess, edge * (1 - 1e-6), edge * (1 + 1e-6), xtol=1e-15)
+    sc = scene_of.py_func(scene_row(scene(0.1, 0.2, mu=mu, horizontal=pulse(a_x, 10.0))))
+    assert cone(a_x) == pytest.approx(excess, rel=0.01)
+    q = np.zeros(codes.N_STATE)
+    q[codes.ITHETA], q[codes.IOMEGA] = theta, omega
+    rcx, rcy = corner(s, theta, sc.body)
+    q[codes.IY], q[codes.IV] = -rcy, -omega * rcx
+    ctx = np.zeros(codes.N_CTX)
+    ctx[codes.CTX_S], ctx[codes.CTX_SIGMA] = s, 1.0
+    return sc, q, ctx
+
+
+@pytest.mark.parametrize("excess", [1e-9, -1e-9])
+def test_a_slip_that_ends_as_it_begins_sticks(excess):
+    """The corner stops slipping (V_cx = 0) with its sticking force a hair outside the
+    friction cone (+1e-9) or inside it (-1e-9).  Outside, ``select_corner`` lets it slip
+    again, as PHYSICS 1.3 says, after a slip that lasted; after one that ended at the
+    instant it began (a graze of the cone, where |F| - mu N is round-off) the corner sticks
+    (rotation about the same corner), else slip and stick would hand the body to each other
+    at one instant without end.  Inside, it sticks either way."""
+    from kernels.codes import ROTATION, SLIDE_ROTATION
+    from kernels.events import EV_SLIP
+    from kernels.transitions import on_event
+    for lasted, expected in ((True, SLIDE_ROTATION if excess > 0 else ROTATION),
+                             (False, ROTATION)):
+        sc, q, ctx = _corner_at_cone_edge(excess)
+        mode, s, sigma, status, flags = on_event(EV_SLIP, SLIDE_ROTATION, 1.0, q, ctx, sc,
+                                                 np.zeros(1), lasted)
+        assert (mode, s, status) == (expected, -1.0, 0), (lasted, excess)
+        assert sigma == (1.0 if expected == SLIDE_ROTATION else 0.0)
+
+
+@pytest.mark.slow
+def test_contraction_does_not_trap_a_grazing_corner():
+    """A cell of the GPU benchmark's map (60 s sweep 10 -> 1 Hz at 15.51 m/s^2, B = 0.1,
+    H = 0.2, mu = 0.8): with floating-point contraction (``KERNEL_CONTRACT=1``, the GPU's
+    rounding) its corner grazes the friction cone at t = 2.489 s, where slip and stick
+    used to alternate without time passing until the event budget ran out (200,000
+    events).  It must end as the plain kernel does, with about as many events (about 20 s
+    of compile for the contraction build)."""
+    sweep = {"kind": "sweep", "hold": "acceleration", "amplitude": 15.511133376293763,
+             "f_start": 10.0, "f_stop": 1.0, "duration": 60.0, "law": "log"}
+    sc = scene(0.1, 0.2, mu=0.8, e_x=-0.8, e_y=0.2, horizontal=sweep, t_end=60.0,
+               max_events=200_000, rtol=1e-6, zeno_dt=1e-4)
+    plain = run_scene(sc)
+    code = ("import json, sys; from kernels.api import run_scene; "
+            "r = run_scene(json.loads(sys.argv[1])); "
+            "print(json.dumps([r.status, r.events]))")
+    env = {**os.environ, "KERNEL_CONTRACT": "1"}
+    ran = subprocess.run([sys.executable, "-c", code, json.dumps(sc)], env=env,
+                         capture_output=True, text=True, timeout=600)
+    assert ran.returncode == 0, ran.stderr
+    status, events = json.loads(ran.stdout.splitlines()[-1])
+    assert plain.status == "overturned"
+    assert status == plain.status and events < 1.1 * plain.events
