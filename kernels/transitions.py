@@ -153,7 +153,9 @@ def select_face(q, a_x, g_e, body, contact, solver):
     """Mode after an impact or landing with theta = 0 (both corners at the floor).
 
     Zeno closure: a corner contact whose next impact would come within zeno_dt is closed
-    to face contact.  A face contact sets q to it in place (omega = v = 0, u = the base's
+    to face contact, its return timed with the theta'' of the mode the corner enters
+    (slide rotation where it slips: a slipping pivot can bring the body back where a
+    sticking one would tip it, and the bounces then decay geometrically).  A face contact sets q to it in place (omega = v = 0, u = the base's
     slip velocity).
     """
     v_tol = closing_speed(solver.zeno_dt)
@@ -169,11 +171,18 @@ def select_face(q, a_x, g_e, body, contact, solver):
         return TRANSLATION_JUMP, 0.0, 0.0
     if omega != 0.0:
         s = -1.0 if omega > 0.0 else 1.0          # omega > 0 lifts the right corner
+        q0, q1, q2, q3, q4, q5 = q[0], q[1], q[2], q[3], q[4], q[5]
+        m, s2, sigma = select_corner(q, s, a_x, g_e, body, contact, v_tol)
         thdd = rotation_dynamics(0.0, omega, s, a_x, g_e, body)[0]
-        if not rocking_closes(omega, thdd, solver.zeno_dt):
-            m, s2, sigma = select_corner(q, s, a_x, g_e, body, contact, v_tol)
-            if s * q[IOMEGA] < 0.0:               # the closure left it rocking about s
-                return m, s2, sigma
+        if m == SLIDE_ROTATION:                   # rocking on a slipping corner
+            slipping = slide_rotation_dynamics(0.0, omega, s, sigma, a_x, g_e, body,
+                                               contact.mu_edge_k)
+            if slipping[3] > 0.0:                 # (D <= 0: Painleve, said on entry)
+                thdd = slipping[0]
+        if rocking_closes(omega, thdd, solver.zeno_dt):
+            q[0], q[1], q[2], q[3], q[4], q[5] = q0, q1, q2, q3, q4, q5
+        elif s * q[IOMEGA] < 0.0:                 # the corner's closure left it rocking
+            return m, s2, sigma
     # face contact: normal impulses under the base stop omega and v and leave u, which is
     # then the slip velocity of the base
     q[IOMEGA] = 0.0

@@ -278,9 +278,11 @@ def test_el_centro_with_vertical(B, H, scale):
         assert r.mode_time["rest"] == 60.0 and r.max_abs_theta == 0.0
 
 
-def _random_forced_scene(rng, ns, ud):
+def _random_forced_scene(rng, ns, ud, kinetic=False):
     """A random block under a sine, a downward acceleration sweep with a vertical sine, or
-    El Centro NS + UD scaled up to 4x; friction 0.1-1, e_x in [-1, 0], e_y in [0, 0.5]."""
+    El Centro NS + UD scaled up to 4x; friction 0.1-1, e_x in [-1, 0], e_y in [0, 0.5].
+    ``kinetic``: the face's and the corner's static friction drawn apart, each kinetic one
+    0.6-1 times its static one, and zeno_dt 1e-4 s (the maps' setting)."""
     H = rng.uniform(0.2, 2.0)
     B = H * rng.uniform(0.1, 1.0)
     mu = rng.uniform(0.1, 1.0)
@@ -297,18 +299,30 @@ def _random_forced_scene(rng, ns, ud):
         scale = rng.uniform(0.5, 4)
         horizontal = {"kind": "record", "samples": ns, "dt": 0.02, "scale": scale}
         vertical = {"kind": "record", "samples": ud, "dt": 0.02, "scale": scale}
-    return scene(B, H, mu=mu, e_x=rng.uniform(-1, 0), e_y=rng.uniform(0, 0.5),
-                 horizontal=horizontal, vertical=vertical, t_end=20.0, max_events=50_000)
+    friction, solver = {"mu": mu}, {}
+    if kinetic:
+        edge = rng.uniform(0.1, 1.0)
+        friction = {"mu_s": mu, "mu_k": mu * rng.uniform(0.6, 1.0), "mu_edge_s": edge,
+                    "mu_edge_k": edge * rng.uniform(0.6, 1.0)}
+        solver = {"zeno_dt": 1e-4}
+    return scene(B, H, **friction, e_x=rng.uniform(-1, 0), e_y=rng.uniform(0, 0.5),
+                 horizontal=horizontal, vertical=vertical, t_end=20.0, max_events=50_000,
+                 **solver)
 
 
-def test_random_forced_scenes_finish():
+@pytest.mark.parametrize("kinetic", [False, True], ids=["one_mu", "kinetic_below_static"])
+def test_random_forced_scenes_finish(kinetic):
     """400 random forced scenes (about 4 s): each ends ok or overturned, with well-formed
-    impacts and mode times adding up to the simulated time."""
+    impacts and mode times adding up to the simulated time.  With kinetic friction below
+    the static one, a rocking body whose pivot slips can fall back onto its face in ever
+    shorter bounces; the Zeno closure must time them with slide rotation's theta''
+    (``transitions.select_face``): timed as a sticking pivot, 70 of 3,000 such scenes ran
+    out of their 50,000 events within the first seconds."""
     ns, ud = _record("elcentro1940_ns.txt"), _record("elcentro1940_ud.txt")
     rng = np.random.default_rng(3)
     bad = []
     for n in range(400):
-        sc = _random_forced_scene(rng, ns, ud)
+        sc = _random_forced_scene(rng, ns, ud, kinetic)
         r = run_scene(sc)
         if r.status not in ("ok", "overturned"):
             bad.append((n, r.status, r.t_final, sc["body"], sc["contact"]))
