@@ -155,8 +155,8 @@ def select_face(q, a_x, g_e, body, contact, solver):
     Zeno closure: a corner contact whose next impact would come within zeno_dt is closed
     to face contact, its return timed with the theta'' of the mode the corner enters
     (slide rotation where it slips: a slipping pivot can bring the body back where a
-    sticking one would tip it, and the bounces then decay geometrically).  A face contact sets q to it in place (omega = v = 0, u = the base's
-    slip velocity).
+    sticking one would tip it, and the bounces then decay geometrically).  A face contact
+    sets q to it in place (omega = v = 0, u = the base's slip velocity).
     """
     v_tol = closing_speed(solver.zeno_dt)
     if abs(q[IOMEGA]) * 0.5 * (body.b1 + body.b2) <= ROCKING_ROUNDOFF * (abs(q[IU])
