@@ -345,10 +345,9 @@ def _corner_at_cone_edge(excess):
     from kernels.motion import corner, rotation_dynamics
     from kernels.state import scene_of
     theta, omega, s, mu = 0.0233, -0.608, -1.0, 0.8
+    body = scene_of.py_func(scene_row(scene(0.1, 0.2, mu=mu))).body
 
     def cone(a_x):
-        body = scene_of.py_func(scene_row(scene(0.1, 0.2, mu=mu,
-                                                horizontal=pulse(a_x, 10.0)))).body
         thdd, F, N = rotation_dynamics(theta, omega, s, a_x, G, body)
         return abs(F) / (mu * N) - 1.0
     edge = brentq(cone, -20.0, -10.0, xtol=1e-14)
