@@ -3,13 +3,17 @@
     mpiexec -n 2 python tests/mpi_two_ranks.py run STUDY OUT_DIR   # two runs: chunks of 3, 7
     mpiexec -n 2 python tests/mpi_two_ranks.py abort               # rank 1 raises
     mpiexec -n 2 python tests/mpi_two_ranks.py deal OUT_DIR        # rank 1 three times slower
+    mpiexec -n 2 python tests/mpi_two_ranks.py leave               # leave as Ctrl-C does
 
 ``run`` writes OUT_DIR/chunk3.nc and OUT_DIR/chunk7.nc with ``sweep.run.main`` (both runs in
 one job, which saves a start-up); ``abort`` raises on rank 1 while rank 0 waits in a barrier
 that rank 1 never reaches: only ``abort_on_exception`` ends the job.  ``deal`` runs
 ``mpi.work`` over 120 one-cell chunks whose cells take 10 ms on rank 0 and 30 ms on rank 1
 (a sleep, which releases the GIL as the kernel does) into part files in OUT_DIR, and prints
-each rank's cells and the end of its last chunk as JSON.
+each rank's cells and the end of its last chunk as JSON.  ``leave`` leaves the exchange as
+Ctrl-C may: rank 1 sent rank 0 messages it never took (one too large to go before it is
+taken), rank 0 sent rank 1 one it never took, and waits in a barrier that rank 1 never
+reached; then both call ``mpi.leave_interrupted``, which ends them.
 """
 import json
 import sys
@@ -63,6 +67,18 @@ def deal(out_dir):
     return 0
 
 
+def leave():
+    comm = mpi.world()
+    if comm.Get_rank() == 1:
+        comm.send(None, dest=0, tag=mpi.TAG_TAKE)
+        comm.isend(np.arange(300_000.0), dest=0, tag=mpi.TAG_PROGRESS)
+    else:
+        comm.send("plan", dest=1, tag=mpi.TAG_PLAN)
+        comm.Ibarrier()
+    mpi.leave_interrupted(comm)
+    return 1  # not reached: leave_interrupted ends the process
+
+
 if __name__ == "__main__":
-    sys.exit({"run": lambda: run(*sys.argv[2:4]), "abort": abort,
+    sys.exit({"run": lambda: run(*sys.argv[2:4]), "abort": abort, "leave": leave,
               "deal": lambda: deal(sys.argv[2])}[sys.argv[1]]())

@@ -14,20 +14,17 @@ exit status.  :func:`run_study` runs the same rounds in one process with the ser
 communicator, keeps the results in memory and returns the Dataset (``sweep.run_study`` in a
 notebook).
 """
-import signal
 import sys
-import threading
 import time
 import warnings
 from collections import namedtuple
-from contextlib import contextmanager
 
 from .. import cf
 from ..io import study_schema
 from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
-from . import fingerprint, grid, mpi, rank_checks, refine, store
+from . import fingerprint, grid, interrupt, mpi, rank_checks, refine, store
 from .cell_checks import load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
@@ -352,19 +349,6 @@ def _interrupted(state, options):
         f"({options.command_line()})", file=sys.stderr)
 
 
-@contextmanager
-def _sigint_ignored():
-    """Ignore Ctrl-C for a moment (main thread only; the handler is restored after)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
 def _one_line(message, category, filename, lineno, file=None, line=None):
     """A warning as one line of the run's log, without the source line."""
     say(f"sweep.run: warning: {message}", file=sys.stderr)
@@ -425,10 +409,11 @@ def _run_file(comm, path, options):
     """:func:`run_file` within its guards: the line after Ctrl-C, the lock released."""
     state = _State()
     try:
-        _run(comm, path, options, state)
+        with interrupt.remembered():
+            _run(comm, path, options, state)
     except KeyboardInterrupt:
         if comm.Get_rank() == 0:
-            with _sigint_ignored():  # a second Ctrl-C must not cut the line
+            with interrupt.ignored():  # a second Ctrl-C must not cut the line
                 _interrupted(state, options)
         raise
     finally:

@@ -11,10 +11,13 @@ chunk of the others.  The other ranks send rank 0 one small message per finished
 which it drains between its own chunks with ``Iprobe`` (no busy ``recv``).  Every wait is a
 test-and-sleep loop, so an idle rank does not spin.  An exception on any rank prints its
 traceback and calls ``COMM_WORLD.Abort``: the whole job ends within seconds instead of
-hanging.  Rank 0 watches the others (:class:`Watch`): a rank silent for longer than
-``max(floor, WATCH_FACTOR x the slowest chunk so far)`` is stopped or stuck, and the job aborts
-naming it and the cells it held.
+hanging.  After Ctrl-C, which ``mpiexec`` passes on to every rank, the ranks settle what they
+left unmatched and end MPI before they end (:func:`leave_interrupted`).  Rank 0 watches the
+others (:class:`Watch`): a rank silent for longer than ``max(floor, WATCH_FACTOR x the
+slowest chunk so far)`` is stopped or stuck, and the job aborts naming it and the cells it
+held.
 """
+import ctypes
 import os
 import signal
 import sys
@@ -29,11 +32,12 @@ import numpy as np
 from kernels import codes
 
 from ..io.exits import EXIT_INTERRUPTED
+from . import interrupt
 
 POLL = 0.02  # s between tests of a pending message or request
 DEAL_POLL = 0.001  # s between the dealer's tests for requests, and a rank's for its answer
 FORWARD = 0.5  # s left to the launcher to pass a failed rank's traceback on before Abort
-LEAVE_WAIT = 10.0  # s an interrupted rank waits for the others to be interrupted too
+LEAVE_WAIT = 10.0  # s an interrupted rank waits to settle with the others (leave_interrupted)
 TAG_PLAN, TAG_PROGRESS, TAG_TAKE, TAG_CHUNK = 11, 12, 13, 14
 WATCH_FLOOR = 300.0  # s of silence always allowed to a rank (sweep.run --rank-timeout)
 WATCH_FACTOR = 10.0  # a rank silent for this many times the slowest chunk so far is stuck
@@ -99,6 +103,72 @@ def is_mpi(comm):
     return not isinstance(comm, SerialComm)
 
 
+class World:
+    """``COMM_WORLD`` with its point-to-point messages and its barriers counted.
+
+    Ranks stopped by Ctrl-C leave messages to each other unmatched (a request for a chunk,
+    the chunk dealt in reply, progress) and may leave one rank waiting in a barrier that the
+    others never reached.  ``MPI_Finalize`` refuses that: MPICH ends such a rank abnormally
+    ("being freed has N unmatched messages"), and its launcher then kills the other ranks and
+    reports a status that is neither rank's.  :func:`leave_interrupted` uses the counts to
+    take every message sent to this rank and to join the barrier another rank waits in.
+    Sends, receives and barriers made here count them, Ctrl-C being held back between a
+    message and its count (``interrupt.held``); everything else is ``COMM_WORLD``'s.
+
+    Parameters
+    ----------
+    comm : mpi4py.MPI.Intracomm
+        ``COMM_WORLD``; a duplicate of it (:attr:`quit`) is made at once (every rank calls
+        this at start-up) for the ranks' exchange when they leave early.
+    """
+
+    def __init__(self, comm):
+        self._comm = comm
+        self.quit = comm.Dup()
+        self.sent = [0] * comm.Get_size()  # messages sent to each rank
+        self.received = [0] * comm.Get_size()  # messages taken from each rank
+        self.barriers = 0  # barriers entered
+        self.open = []  # requests not yet seen complete (sends, barriers)
+        self._lock = threading.Lock()  # rank 0's dealer thread counts too
+
+    def __getattr__(self, name):
+        return getattr(self._comm, name)
+
+    def _count(self, counts, rank, request=None):
+        with self._lock:
+            counts[rank] += 1
+            if request is not None:
+                self.open = [r for r in self.open if not r.Test()] + [request]
+
+    def send(self, obj, dest, tag):
+        with interrupt.held():
+            self._comm.send(obj, dest=dest, tag=tag)
+            self._count(self.sent, dest)
+
+    def isend(self, obj, dest, tag):
+        with interrupt.held():
+            request = self._comm.isend(obj, dest=dest, tag=tag)
+            self._count(self.sent, dest, request)
+        return request
+
+    def recv(self, source, tag):
+        with interrupt.held():
+            obj = self._comm.recv(source=source, tag=tag)
+            self._count(self.received, source)
+        return obj
+
+    def Ibarrier(self):
+        with interrupt.held():
+            request = self._comm.Ibarrier()
+            with self._lock:
+                self.barriers += 1
+                self.open = [r for r in self.open if not r.Test()] + [request]
+        return request
+
+
+_WORLD = None  # this process's World, once made
+
+
 def launcher_size(environ=None):
     """Largest rank count announced by a launcher's variables: (size, variable) or (0, None)."""
     environ = os.environ if environ is None else environ
@@ -144,9 +214,9 @@ def _threads_off():
 def world(environ=None):
     """The communicator of this process.
 
-    ``COMM_WORLD`` of mpi4py when a launcher started the process (or ``SWEEP_MPI=1``;
-    ``SWEEP_MPI=0`` forces serial), else a :class:`SerialComm`.  Under MPI the numba, OpenMP
-    and BLAS threads are set to one.
+    ``COMM_WORLD`` of mpi4py, as one :class:`World` per process, when a launcher started the
+    process (or ``SWEEP_MPI=1``; ``SWEEP_MPI=0`` forces serial), else a :class:`SerialComm`.
+    Under MPI the numba, OpenMP and BLAS threads are set to one.
 
     Raises
     ------
@@ -177,7 +247,10 @@ def world(environ=None):
             "job with the mpiexec of the MPI that mpi4py was built with (for the bundled "
             "MPICH: .venv/bin/mpiexec), or reinstall mpi4py against the site MPI "
             "(pip install --no-binary mpi4py --force-reinstall mpi4py).")
-    return comm
+    global _WORLD
+    if _WORLD is None:
+        _WORLD = World(comm)
+    return _WORLD
 
 
 def world_or_say(prog):
@@ -193,6 +266,7 @@ def world_or_say(prog):
 def wait(request):
     """Wait for a non-blocking request by testing and sleeping (an idle rank does not spin)."""
     while not request.Test():
+        interrupt.check()
         time.sleep(POLL)
 
 
@@ -234,28 +308,76 @@ def abort_on_exception(comm):
 
 
 def leave_interrupted(comm):
-    """End this rank with status 130 (``io.exits.EXIT_INTERRUPTED``) after Ctrl-C, when it is
-    one of several ranks, once every rank is there or ``LEAVE_WAIT`` has passed; serially,
-    return.
+    """After Ctrl-C, when this is one of several ranks: settle with the other ranks, end MPI
+    and end the process with status 130 (``io.exits.EXIT_INTERRUPTED``); serially, return.
 
-    The interrupted ranks leave messages to each other unmatched (a request for a chunk, the
-    chunk dealt in reply), and MPICH's ``MPI_Finalize`` at the interpreter's exit then ended
-    rank 0 abnormally in about one run in four, so that ``mpiexec`` reported status 2 instead
-    of 130; hence ``os._exit``.  The ranks meet first, so that none leaves (and has the
-    launcher end the others) before rank 0 has said what is saved.  Nothing else is left to
-    do by then: the part files are written and the output's lock is released.
+    Ctrl-C is ignored from here on.  The ranks exchange how many messages each sent to each
+    and how many barriers each entered (on :attr:`World.quit`).  Each then takes the
+    messages still due to it, joins a barrier another rank waits in, and meets the others
+    once more, so that ``MPI_Finalize`` finds nothing unmatched.  The process then ends with
+    the C library's ``exit``, not Python's: MPICH tells its launcher that the rank ended
+    well only in a C exit hook (``MPIR_pmi_finalize_on_exit``; without it the launcher kills
+    the other ranks and may report their SIGKILL), and CPython would end the process by
+    SIGINT instead of its status when a ``KeyboardInterrupt``, caught since, once passed
+    through code it ran from a string (``_Py_UnhandledKeyboardInterrupt``: set on rank 0 in
+    5 of 10 runs of the Ctrl-C test).  Nothing else is left to do by then: the part files are
+    written, the output's lock is released and stdout and stderr are flushed.  A rank that
+    cannot settle within ``LEAVE_WAIT`` (another rank still in a long chunk, or cut between a
+    barrier and the exchange after it) ends at once with ``os._exit``, and the launcher ends
+    the others.
     """
     if not is_mpi(comm):
         return
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C: no traceback now
+    from mpi4py import MPI
+
+    end = os._exit
+    try:
+        if _settle(comm, time.monotonic() + LEAVE_WAIT):
+            MPI.Finalize()
+            end = ctypes.CDLL(None).exit
+    except MPI.Exception:
+        pass
     sys.stdout.flush()
     sys.stderr.flush()
-    request = comm.Ibarrier()
-    end = time.monotonic() + LEAVE_WAIT
-    while not request.Test() and time.monotonic() < end:
-        time.sleep(POLL)
-    os._exit(EXIT_INTERRUPTED)
+    end(EXIT_INTERRUPTED)
+
+
+def _settle(world, end):
+    """Take every message due to this rank and complete every barrier and send it began, by
+    ``end`` (``time.monotonic()``); True when done and every rank is done too."""
+    size, rank = world.Get_size(), world.Get_rank()
+    table = np.zeros((size, size + 1), np.int64)
+    mine = np.array(world.sent + [world.barriers], np.int64)
+    if not _until(world, world.quit.Iallgather(mine, table).Test, end):
+        return False
+    for _ in range(table[:, -1].max() - world.barriers):  # the barrier a rank waits in
+        world.Ibarrier()
+    due = table[:, rank]
+    if not _until(world, lambda: (np.all(np.array(world.received) >= due)
+                                  and all(r.Test() for r in world.open)), end):
+        return False
+    if not _until(world, world.quit.Ibarrier().Test, end):
+        return False
+    world.quit.Free()
+    return True
+
+
+def _until(world, done, end):
+    """Take every message that arrives at ``world`` until ``done()`` or ``end``; True if
+    done."""
+    from mpi4py import MPI
+
+    status = MPI.Status()
+    while True:
+        while world.Iprobe(source=MPI.ANY_SOURCE, tag=MPI.ANY_TAG, status=status):
+            world.recv(source=status.Get_source(), tag=status.Get_tag())
+        if done():
+            return True
+        if time.monotonic() > end:
+            return False
+        time.sleep(DEAL_POLL)
 
 
 def gather(comm, value):
@@ -450,12 +572,10 @@ class Taker:
     def take(self):
         """The next chunk, or None when none is left."""
         self.comm.send(None, dest=0, tag=TAG_TAKE)
-        request = self.comm.irecv(source=0, tag=TAG_CHUNK)
-        while True:
-            done, k = request.test()
-            if done:
-                return None if k < 0 else self.chunks[k]
+        while not self.comm.Iprobe(source=0, tag=TAG_CHUNK):
             time.sleep(DEAL_POLL)
+        k = self.comm.recv(source=0, tag=TAG_CHUNK)
+        return None if k < 0 else self.chunks[k]
 
 
 def _drain(comm, progress, stats, watch, lock):
@@ -526,6 +646,7 @@ def work(comm, study, chunks, *, store=None, progress=None, run_chunk=None, befo
     try:
         if before is not None:
             before()
+            interrupt.check()
         return _work(comm, study, source, store, progress, run_chunk, watch)
     finally:
         if rank == 0:
@@ -540,6 +661,7 @@ def _work(comm, study, source, store, progress, run_chunk, watch):
     started = ended = None
     lock = getattr(source, "mpi_lock", None)
     while (chunk := source.take()) is not None:
+        interrupt.check()
         t0 = time.perf_counter()
         started = started or time.time()
         result = run_chunk(study, chunk)

@@ -1,8 +1,9 @@
 """Two ranks under mpiexec (a subprocess with a timeout): exact equality with one rank,
-any chunk size, and of ``sweep.risk``'s report; chunks dealt to the rank that is free; abort on an exception; resume of a
-terminated job with another rank count; Ctrl-C; a stopped rank detected and named; the
-launcher/library mismatch message."""
+any chunk size, and of ``sweep.risk``'s report; chunks dealt to the rank that is free; abort
+on an exception; resume of a terminated job with another rank count; Ctrl-C, and ranks left
+mid-exchange; a stopped rank detected and named; the launcher/library mismatch message."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -27,8 +28,8 @@ if MPIEXEC is None:
     pytest.skip("no mpiexec", allow_module_level=True)
 
 
-def _mpiexec(*args, timeout=180, **kwargs):
-    return subprocess.run([MPIEXEC, "-n", "2", *map(str, args)], env=cli_env(),
+def _mpiexec(*args, ranks=("-n", "2"), timeout=180, **kwargs):
+    return subprocess.run([MPIEXEC, *ranks, *map(str, args)], env=cli_env(),
                           capture_output=True, text=True, timeout=timeout, **kwargs)
 
 
@@ -89,6 +90,19 @@ def test_exception_on_one_rank_aborts_the_job(tmp_path):
     assert time.monotonic() - start < 30
     assert "rank 1 of 2 failed" in done.stderr and "Traceback" in done.stderr
     assert "RuntimeError: boom on rank 1" in done.stderr
+
+
+def test_ranks_left_mid_exchange_end_by_themselves(tmp_path):
+    """What Ctrl-C leaves (messages not taken, a rank in a barrier) is settled: each rank
+    ends MPI and then the process with 130, none killed by the launcher for another's end."""
+    if "HYDRA" not in subprocess.run([MPIEXEC, "--version"], capture_output=True,
+                                     text=True).stdout:
+        pytest.skip("each rank's exit status is shown by MPICH's launcher (Hydra)")
+    done = _mpiexec(PY, SCRIPT, "leave", ranks=("-print-all-exitcodes", "-n", "2"),
+                    cwd=tmp_path, timeout=60)
+    codes = re.search(r"Exit codes: \[[^\]]*\] ([\d,]+)", done.stdout)
+    assert done.returncode == 130 and codes, (done.stdout, done.stderr)
+    assert codes[1] == f"{130 << 8},{130 << 8}", done.stdout  # wait statuses: exit(130) twice
 
 
 def test_terminated_job_resumes_on_one_rank(tmp_path):
