@@ -336,7 +336,7 @@ def leave_interrupted(comm):
     try:
         if _settle(comm, time.monotonic() + LEAVE_WAIT):
             MPI.Finalize()
-            end = ctypes.CDLL(None).exit
+            end = ctypes.PyDLL(None).exit  # the GIL held: no Python thread runs meanwhile
     except MPI.Exception:
         pass
     sys.stdout.flush()
