@@ -263,11 +263,17 @@ def world_or_say(prog):
         return None
 
 
+def _pause(seconds):
+    """A waiting rank's sleep, after which a Ctrl-C that was swallowed is raised
+    (``interrupt.check``): a rank waiting for an answer must not wait for ever."""
+    interrupt.check()
+    time.sleep(seconds)
+
+
 def wait(request):
     """Wait for a non-blocking request by testing and sleeping (an idle rank does not spin)."""
     while not request.Test():
-        interrupt.check()
-        time.sleep(POLL)
+        _pause(POLL)
 
 
 def barrier(comm):
@@ -401,7 +407,7 @@ def distribute(comm, plans=None):
             comm.send(plans[rank], dest=rank, tag=TAG_PLAN)
         return plans[0]
     while not comm.Iprobe(source=0, tag=TAG_PLAN):
-        time.sleep(POLL)
+        _pause(POLL)
     return comm.recv(source=0, tag=TAG_PLAN)
 
 
@@ -573,7 +579,7 @@ class Taker:
         """The next chunk, or None when none is left."""
         self.comm.send(None, dest=0, tag=TAG_TAKE)
         while not self.comm.Iprobe(source=0, tag=TAG_CHUNK):
-            time.sleep(DEAL_POLL)
+            _pause(DEAL_POLL)
         k = self.comm.recv(source=0, tag=TAG_CHUNK)
         return None if k < 0 else self.chunks[k]
 
@@ -696,7 +702,7 @@ def _work(comm, study, source, store, progress, run_chunk, watch):
             if pending > 0 and not served:
                 if watch is not None:
                     watch.check()
-                time.sleep(DEAL_POLL if not source.threaded() else POLL)
+                _pause(DEAL_POLL if not source.threaded() else POLL)
     else:
         requests.append(comm.isend(stats[rank], dest=0, tag=TAG_PROGRESS))
         for request in requests:
