@@ -264,7 +264,7 @@ def world_or_say(prog):
 
 
 def _pause(seconds):
-    """A waiting rank's sleep, after which a Ctrl-C that was swallowed is raised
+    """A waiting rank's sleep, first raising a Ctrl-C that was swallowed
     (``interrupt.check``): a rank waiting for an answer must not wait for ever."""
     interrupt.check()
     time.sleep(seconds)
