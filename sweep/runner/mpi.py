@@ -138,7 +138,11 @@ class World:
         with self._lock:
             counts[rank] += 1
             if request is not None:
-                self.open = [r for r in self.open if not r.Test()] + [request]
+                self._keep(request)
+
+    def _keep(self, request):
+        """Add ``request`` to :attr:`open`, leaving out those seen complete (under the lock)."""
+        self.open = [r for r in self.open if not r.Test()] + [request]
 
     def send(self, obj, dest, tag):
         with interrupt.held():
@@ -162,7 +166,7 @@ class World:
             request = self._comm.Ibarrier()
             with self._lock:
                 self.barriers += 1
-                self.open = [r for r in self.open if not r.Test()] + [request]
+                self._keep(request)
         return request
 
 
