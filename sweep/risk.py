@@ -282,6 +282,8 @@ def print_report(outcome):
               f"bound of the interval, marked *)")
         for label in meeting:
             print(f"  {label}{' *' if label in sure else ''}")
+    for text in outcome.warnings:
+        print(f"caution: {text}")
 
 
 def _csv_rows(outcome):
@@ -350,12 +352,13 @@ def main(argv=None):
     if unusable:
         print(FileProblems(unusable), file=sys.stderr)
         return EXIT_BAD_INPUT
-    from .io.problems import reported
+    from .io.problems import cautions, reported
     from .probability.risk_report import report, to_dataset, write_dataset
     from .probability.site_studies import RunFailed
+    from .runner.mpi import first_process
 
     try:
-        with reported(source):
+        with cautions(show=first_process()) as said, reported(source):
             if args.hazard:
                 outcome = _curve_only(args)
                 dataset = Path(args.dataset) if args.dataset else None
@@ -365,10 +368,9 @@ def main(argv=None):
     except RunFailed as err:
         print(f"sweep.risk: {err}", file=sys.stderr)
         return EXIT_FAILED
-    from .runner.mpi import first_process
-
     if not first_process():  # under mpiexec: the ranks shared the stripes; rank 0 reports
         return EXIT_OK
+    outcome.warnings = said
     if args.map and not outcome.body_dims:
         print("sweep.risk: --map needs a grid of bodies in the risk file", file=sys.stderr)
         return EXIT_BAD_INPUT

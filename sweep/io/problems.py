@@ -83,6 +83,34 @@ def warn(problems):
         warnings.warn(InputWarning(problem), stacklevel=2)
 
 
+def caution(message, path="caution"):
+    """Issue ``message`` (a caution about a result, not a file's value) as an
+    :class:`InputWarning` under ``path``."""
+    warnings.warn(InputWarning(Problem(path, None, message)), stacklevel=2)
+
+
+@contextmanager
+def cautions(show=True):
+    """Collect the :class:`InputWarning` s issued inside (each once) into the list yielded,
+    as ``path: message`` strings, and with ``show`` print each as the commands do
+    (``warning: ...`` on stderr); other warnings go on as they would."""
+    said = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        try:
+            yield said
+        finally:
+            for w in caught:
+                if issubclass(w.category, InputWarning):
+                    text = str(w.message)
+                    if text not in said:
+                        said.append(text)
+                else:
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    for text in said if show else ():
+        print(f"warning: {text}", file=sys.stderr, flush=True)
+
+
 def join_path(path, key):
     """Dotted path of ``key`` below ``path``; list indices as ``[i]``."""
     if isinstance(key, int):

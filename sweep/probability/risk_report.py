@@ -28,7 +28,8 @@ class RiskOutcome:
     ``fits`` and ``risks`` are object arrays of the body shape (``()`` for one body): a
     ``fit.LognormalFit`` (None for a known fragility) and a ``risk.Risk`` (None where the
     fit is not identifiable).  ``k``, ``n``: overturned and simulated motions per stripe and
-    body.  ``body_coords``: {dim: (SI values, attrs)}.
+    body.  ``body_coords``: {dim: (SI values, attrs)}.  ``warnings``: every caution said
+    while it was computed (``path: message``), for the JSON and the dataset.
     """
 
     curve: object
@@ -45,6 +46,7 @@ class RiskOutcome:
     disaggregation: object = None
     name: str = "risk"
     site: str = None
+    warnings: list = field(default_factory=list)
 
     @property
     def shape(self):
@@ -237,7 +239,7 @@ def report(outcome):
     return {"name": outcome.name, "site": outcome.site, "im": outcome.curve.im,
             "years": outcome.years, "target": outcome.target,
             "bodies": [body_record(outcome, index) for index in np.ndindex(*outcome.shape)],
-            "hazard": hazard_record(outcome)}
+            "hazard": hazard_record(outcome), "warnings": list(outcome.warnings)}
 
 
 SEGMENT, LEVEL, STRIPE = "segment", "hazard_level", "stripe"
@@ -352,6 +354,8 @@ def to_dataset(outcome, history=""):
                       " BSSA 89"})
     if outcome.target is not None:
         ds.attrs["target_probability"] = outcome.target
+    if outcome.warnings:
+        ds.attrs["warnings"] = "\n".join(outcome.warnings)
     return ds
 
 
