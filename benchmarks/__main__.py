@@ -42,7 +42,7 @@ def _header(quick, figure, output, wall, load_start, load_end, names):
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {_versions()}. "
         f"Load average (1 min) {load_start:.2f} at the start, {load_end:.2f} at the end: "
         "on a shared machine every time below is an upper bound of what the code needs.", "",
-        f"Sections: {', '.join(names)}. Targets are those of DESIGN.md section 10.", "",
+        f"Sections: {', '.join(names)}. Targets are those of docs/design.md section 10.", "",
         f"![work-precision plot]({link})", ""])
 
 
@@ -50,7 +50,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(
         prog="python -m benchmarks",
         description="Speed against error, throughput and stability of the kernel "
-                    "(DESIGN.md section 10): writes a Markdown report and a plot.")
+                    "(docs/design.md section 10): writes a Markdown report and a plot.")
     parser.add_argument("--quick", action="store_true",
                         help="a fast smoke run: fewer scenes, rungs, cells and repeats")
     parser.add_argument("-o", "--output", type=Path, default=OUTPUT,
@@ -74,7 +74,7 @@ def main(argv=None):
     header = _header(args.quick, args.figure, args.output, time.perf_counter() - t0,
                      load_start, os.getloadavg()[0], names)
     summary = "\n".join(["## Targets, side by side", "",
-                         table(["target (DESIGN 10)", "measured", "met"], targets), ""])
+                         table(["target (docs/design.md 10)", "measured", "met"], targets), ""])
     parts = [p.rstrip() + "\n" for p in parts]
     write_text(args.output, "\n".join([header, *parts[:1], summary, *parts[1:]]))
     print(f"wrote {args.output} and {args.figure}", file=sys.stderr)

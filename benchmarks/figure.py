@@ -23,7 +23,7 @@ def work_precision_figure(all_curves, target_error, target_cpu):
     """A Figure with one log-log panel per scene: error against median CPU time [ms].
 
     Runs whose error is not finite (wrong impact count, missed overturning) are left out and
-    counted in the panel.  The steady-rocking panel shows DESIGN 10's target corner.
+    counted in the panel.  The steady-rocking panel shows docs/design.md 10's target corner.
     """
     n = len(all_curves)
     cols = min(3, n)

@@ -2,8 +2,8 @@
 
 What the engine's generality costs is measured against this loop, which knows only rocking on
 a floor moving as a sine or a log sweep of acceleration (the throughput map's): theta'' of
-PHYSICS 1.2 (3) about the pivot corner, Housner's impact
-omega+ = eta omega- at theta = 0 (PHYSICS 2.1 with e_x = e_y = 0 and a pivot that never
+docs/physics.md 1.2 (3) about the pivot corner, Housner's impact
+omega+ = eta omega- at theta = 0 (docs/physics.md 2.1 with e_x = e_y = 0 and a pivot that never
 slips), rest until |a_x| > (b/h) g, and nothing else — no sliding, flight, events of other
 modes, extremes, history or Zeno bookkeeping beyond the classical closure (and, with
 ``zeno_dt``, the map's: an impact within zeno_dt of the one before ends in rest).  It runs the very

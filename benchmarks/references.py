@@ -1,4 +1,4 @@
-"""Reference solutions that need no event-driven integrator, written from PHYSICS.md alone.
+"""Reference solutions that need no event-driven integrator, written from docs/physics.md alone.
 
 They live in the tests' reference module, ``tests/naive.py`` (the tests never import
 ``benchmarks``); the benchmarks use them under this name.

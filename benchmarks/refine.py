@@ -24,7 +24,7 @@ from benchmarks.markdown import Section, table, verdict
 from sweep.paper import criteria
 from sweep.runner.cells import warm_up
 
-# Housner's impact (PHYSICS.md 2.1) and friction enough for rocking without sliding
+# Housner's impact (docs/physics.md 2.1) and friction enough for rocking without sliding
 CONTACT = {"mu": 0.8, "e_x": 0.0, "e_y": 0.0}
 
 Map = namedtuple("Map", "title scene line line_label full quick unit low high coarse "
@@ -165,7 +165,7 @@ def section(quick):
                     f"{r.t_dense / r.t_refine:.1f}×", ""]]
     text += [table(["map (lines)", "method", "simulations", "wall time [s]",
                     "boundary resolution"], totals), "",
-             "Near its threshold a swept block overturns in bands (PHYSICS.md 3.4: near-"
+             "Near its threshold a swept block overturns in bands (docs/physics.md 3.4: near-"
              "threshold rocking is sensitive to the amplitude); there `refine:` follows the "
              "lowest bracket its coarse values show and misses an overturning band narrower "
              "than the coarse step, so its boundary can lie above the dense grid's lowest "

@@ -1,7 +1,7 @@
-"""Reference scenes of the work-precision benchmark (DESIGN.md section 10) and their errors.
+"""Reference scenes of the work-precision benchmark (docs/design.md section 10) and their errors.
 
 Each scene is a scene-file dict (units as in scene files), what its error measures, where its
-reference comes from (an exact anchor of PHYSICS.md section 4, or a tight-tolerance run), and
+reference comes from (an exact anchor of docs/physics.md section 4, or a tight-tolerance run), and
 whether the rocking-only scipy model (``scipy_rocking``) solves the same problem: that needs
 Housner's impact (e_x = e_y = 0) and friction that never lets the pivot slip (mu = 10), and a
 scene in which the pivot never slips or lifts before the end.
@@ -18,7 +18,7 @@ from tests.naive import floor_motion
 from . import references, scipy_rocking
 
 HOUSNER = {"mu": 10.0, "e_x": 0.0, "e_y": 0.0}
-THETA0_FREE = 0.5      # free rocking from theta0 = 0.5 alpha (PHYSICS A4)
+THETA0_FREE = 0.5      # free rocking from theta0 = 0.5 alpha (docs/physics.md A4)
 N_FREE = 50            # impacts compared with the quadrature anchor (t_50 = 1.783179 s)
 # Impacts of an accumulation (chatter before rest) whose post-impact |omega| is below this
 # are not compared: how many there are depends on the Zeno closure rule, not on accuracy.
@@ -105,7 +105,7 @@ SCENES = (
                t_end=3.0),
         anchor=_free_rocking_anchor, n_compare=N_FREE,
         note=f"released at rest from {THETA0_FREE} alpha, 3 s; error over the first {N_FREE} "
-             "impacts against the quadrature of PHYSICS A4 (accumulation at 1.783685 s)"),
+             "impacts against the quadrature of docs/physics.md A4 (accumulation at 1.783685 s)"),
     ReferenceScene(
         "overturning", "Overturning",
         _scene({"B": 0.1, "H": 0.3}, HOUSNER,
@@ -137,7 +137,7 @@ SCENES = (
                {"kind": "sine", "amplitude": "0.3 g", "frequency": 2.0}),
         measure="slip", rocking_only=False, anchor=_slide_anchor,
         note="B = H = 0.3 m, mu = 0.2 < b/h, 0.3 g at 2 Hz, 10 s: slides only; error of the "
-             "largest slip against Newmark's rigid-plastic block (PHYSICS A6, scipy rtol "
+             "largest slip against Newmark's rigid-plastic block (docs/physics.md A6, scipy rtol "
              "1e-12)"),
 )
 
@@ -147,7 +147,7 @@ def scipy_problem(resolved):
 
     The Zeno closure follows the kernel's rule (an impact is the last when the next would
     come within ``zeno_dt``) for a still floor: after omega+ from theta = 0 the block returns
-    in 2 omega+/(p^2 sin alpha) (PHYSICS 1.2 (3) at theta = 0), hence zeno_omega =
+    in 2 omega+/(p^2 sin alpha) (docs/physics.md 1.2 (3) at theta = 0), hence zeno_omega =
     p^2 sin(alpha) zeno_dt / 2.
     """
     body, solver = resolved["body"], resolved["solver"]

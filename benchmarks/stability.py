@@ -81,7 +81,7 @@ def stick_slip_table(quick):
                      ", ".join(f"{k} {v:.2f}" for k, v in r.mode_time.items() if v)])
     return ("### Stick-slip with friction near b/h\n\nmu = (b/h)(1 + excess) for all four "
             "coefficients, e_x = -0.8, e_y = 0.2, 1.2 West at 2 Hz, 10 s. With mu <= b/h the "
-            "block can only slide (PHYSICS 1.2 (2), 1.3).\n\n"
+            "block can only slide (docs/physics.md 1.2 (2), 1.3).\n\n"
             + table(["excess", "status", "events", "impacts", "steps", "CPU ms",
                      "max |theta| [rad]", "time per mode [s]"], rows))
 
@@ -101,9 +101,9 @@ def painleve_table(quick):
         entry["non_finite"] += not finite
     rows = [[mu, ", ".join(f"{n} {s}" for s, n in sorted(e["status"].items())),
              e["non_finite"], e["events"], ms(e["cpu"])] for mu, e in by_mu.items()]
-    return ("### The Painleve region\n\nEdge friction around 4/3 (PHYSICS 3.2: no Painleve "
-            "case below it), blocks 0.1 x 0.3, 0.5 x 1.0 and 1 x 1 m, a 2-west sine at 2 Hz "
-            "and El Centro NS + UD x 3, e_x = -1, -0.8, 0, e_y = 0.2, 20 s: 18 runs per "
+    return ("### The Painleve region\n\nEdge friction around 4/3 (docs/physics.md 3.2: no "
+            "Painleve case below it), blocks 0.1 x 0.3, 0.5 x 1.0 and 1 x 1 m, a 2-west sine at "
+            "2 Hz and El Centro NS + UD x 3, e_x = -1, -0.8, 0, e_y = 0.2, 20 s: 18 runs per "
             "mu.\n\n" + table(["mu", "statuses", "non-finite results", "max events",
                                "max CPU ms"], rows))
 
@@ -123,7 +123,7 @@ def bouncing_table(quick):
             "6 s (rtol 1e-10); the mechanical energy per unit mass from the history every 1 ms "
             "after the floor stops must never rise (e_y = 1, e_x = -1, mu = 0: no dissipation "
             "at all, constant). 'clamps': impacts whose restitution law would have gained "
-            "energy, clamped by the kernel (PHYSICS 2.2 step 6).\n\n"
+            "energy, clamped by the kernel (docs/physics.md 2.2 step 6).\n\n"
             + table(["e_y", "e_x", "mu", "status", "impacts", "clamps", "jump time [s]",
                      "E at 2 s [J/kg]", "E at 6 s [J/kg]", "largest rise / E", "CPU ms"], rows))
 
@@ -157,11 +157,12 @@ def ensemble_table(quick):
     return ("### Chaotic rocking: overturning statistics over a phase ensemble\n\n"
             f"{n} random phases (seeded) of a vertical 0.15 g sine at 3.3 Hz added to 0.97 "
             "West at 2 Hz, Housner contact, 15 s from rest: near the overturning threshold, "
-            "where single trajectories depend on the tolerance (PHYSICS 3.4). Fractions with "
-            "Wilson 95 % intervals; against the first row: trajectories overturning only in "
-            "this run / only in the first, difference of fractions with its 95 % interval "
-            "from the discordant pairs, exact McNemar p-value, and trajectories overturning in "
-            "both whose overturning times differ by more than 1 ms.\n\n"
+            "where single trajectories depend on the tolerance (docs/physics.md 3.4). "
+            "Fractions with Wilson 95 % intervals; against the first row: trajectories "
+            "overturning only in this run / only in the first, difference of fractions with "
+            "its 95 % interval from the discordant pairs, exact McNemar p-value, and "
+            "trajectories overturning in both whose overturning times differ by more than "
+            "1 ms.\n\n"
             + table(["setting", "overturned", "only here / only first", "difference",
                      "p", "t_overturn differs > 1 ms"], rows))
 

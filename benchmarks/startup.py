@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENE = "studies/steady_rocking.yaml"
 COLD = ("import sweep; from sweep.runner.cells import warm_up; "
         f"sweep.simulate({SCENE!r}); warm_up()")
-TARGET_COLD_CPU = 20.0      # s of CPU for the first compile (DESIGN 10)
+TARGET_COLD_CPU = 20.0      # s of CPU for the first compile (docs/design.md 10)
 TARGET_WARM_EXTRA = 0.15    # s of wall time a warm scene may take beyond `import numba`
 TARGET_SIMULATE = 1.3       # CPU of a sweep.simulate() call / the kernel's own CPU in it
 
@@ -80,7 +80,7 @@ def measure(quick):
 
 
 def targets(m):
-    """Rows (target, measured, met) of DESIGN 10."""
+    """Rows (target, measured, met) of docs/design.md 10."""
     extra = m["scene"] - m["numba"]
     return [
         [f"cold compile of a scene and a study <= {TARGET_COLD_CPU:g} s CPU",
@@ -106,4 +106,4 @@ def section(quick):
         f"`python -m sweep.scene {SCENE} --json` and `python -c \"import numba\"` are launched "
         f"alternately, {m['repeats']} times each, wall time from launch to exit (medians). The "
         f"scene's own `cpu_s` (the simulation alone) is {ms(m['cpu_s'])} ms.", "",
-        table(["target (DESIGN 10)", "measured", "met"], rows), ""]), rows)
+        table(["target (docs/design.md 10)", "measured", "met"], rows), ""]), rows)

@@ -23,7 +23,7 @@ from kernels import api
 from .markdown import Section, ms, table, verdict
 
 STUDY = Path(__file__).with_name("sweep_map.yaml")
-TARGET_CELL_CPU = 5e-3      # s per 60 s sweep cell (DESIGN 10)
+TARGET_CELL_CPU = 5e-3      # s per 60 s sweep cell (docs/design.md 10)
 TARGET_MAP_WALL = 5.0       # s for 1,000 cells on 2 ranks
 TARGET_SPEEDUP = 1.8
 TIMEOUT = 1800              # s per sweep.run launch
@@ -133,7 +133,7 @@ def measure(quick):
 
 
 def targets(m):
-    """Rows (target, measured, met) of DESIGN 10."""
+    """Rows (target, measured, met) of docs/design.md 10."""
     n, cpu = m["cells"], m["cpu"]
     rows = [["60 s sweep <= 5 ms CPU on average over a map",
              f"{ms(cpu.mean())} ms (kernel, {n} cells)", verdict(cpu.mean() <= TARGET_CELL_CPU)]]
@@ -191,7 +191,7 @@ def section(quick):
         "sweep.run` (2 ranks), start-up, merge and netCDF writing included; the CPU time of "
         "their processes shows how much of the wall time went to other work on the machine. "
         "The one-cell study (first value of every axis) measures the start-up.", "",
-        table(["target (DESIGN 10)", "measured", "met"], rows), "",
+        table(["target (docs/design.md 10)", "measured", "met"], rows), "",
         table(["cells", "count", "kernel CPU mean [ms]", "median [ms]", "max [ms]"],
               [["all", n, ms(cpu.mean()), ms(np.median(cpu)), ms(cpu.max())],
                *per_outcome]), "",

@@ -1,4 +1,4 @@
-"""Work-precision: error against CPU time on the reference scenes (DESIGN.md section 10).
+"""Work-precision: error against CPU time on the reference scenes (docs/design.md section 10).
 
 In one run: the kernel's adaptive integrator over a ladder of rtol, its fixed step over a
 ladder of dt, the floor (``floor``: the kernel's adaptive tableau in a compact rocking-only
@@ -25,7 +25,7 @@ REFERENCE_RTOL = 1e-13
 CHECK_RTOL = 1e-12          # the reference's own error is estimated against this run
 CPU_BUDGET = 2.0            # s of CPU per rung of the kernel: fewer repeats for slow runs
 SCIPY_BUDGET = 5.0          # the same for scipy
-TARGET_ERROR = 1e-8         # s: DESIGN 10, steady rocking
+TARGET_ERROR = 1e-8         # s: docs/design.md 10, steady rocking
 TARGET_CPU = 0.5e-3         # s
 
 
@@ -121,8 +121,8 @@ def _floor(resolved, rtol):
 def _reference(scene):
     """(reference Outcome, text saying what it is and how good it is)."""
     if scene.anchor is not None:
-        what = "quadrature (PHYSICS A4)" if scene.measure == "impacts" else \
-            "rigid-plastic block, scipy rtol 1e-12 (PHYSICS A6)"
+        what = "quadrature (docs/physics.md A4)" if scene.measure == "impacts" else \
+            "rigid-plastic block, scipy rtol 1e-12 (docs/physics.md A6)"
         return scene.anchor(), f"exact anchor: {what}"
     ref = scenes.Outcome.of_kernel(run_scene(_adaptive(scene.resolved, REFERENCE_RTOL)))
     check = scenes.Outcome.of_kernel(run_scene(_adaptive(scene.resolved, CHECK_RTOL)))
@@ -236,7 +236,7 @@ def _at_target(curves, method):
 
 
 def targets(all_curves):
-    """Rows (target, measured, met) of DESIGN 10 on steady rocking, and the engine against
+    """Rows (target, measured, met) of docs/design.md 10 on steady rocking, and the engine against
     the floor and scipy at ``TARGET_ERROR`` on every rocking scene (for information)."""
     rows = []
     by_key = {c.scene.key: c for c in all_curves}
@@ -280,7 +280,7 @@ def section(quick, figure=None):
             "compact rocking-only loop (`benchmarks/floor.py`): what the engine's generality "
             "costs. The last column is the CPU scipy needs for the same error (log-log "
             "interpolation on its cheapest runs) over that row's.", "",
-            table(["target (DESIGN 10)", "measured", "met"], rows)]
+            table(["target (docs/design.md 10)", "measured", "met"], rows)]
     if figure is not None:
         from .figure import work_precision_figure
         write_figure(figure, work_precision_figure(all_curves, TARGET_ERROR, TARGET_CPU))

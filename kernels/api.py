@@ -19,7 +19,7 @@ held quantity, "f_start": Hz, "f_stop": Hz, "duration": s, "law": "log"|"linear"
 ``{"kind": "record", "samples": ndarray m/s^2, "dt": s, "scale": 1.0}``,
 ``{"kind": "pulse", "shape": "rectangular"|"triangular", "amplitude": m/s^2, "duration": s}``.
 Missing keys take the values of ``DEFAULTS``.  Sign convention: x and a_x positive to the
-right, theta > 0 is rotation about the left corner (PHYSICS.md section 1.1).
+right, theta > 0 is rotation about the left corner (docs/physics.md section 1.1).
 """
 import math
 import time
@@ -281,7 +281,7 @@ SceneResult = namedtuple("SceneResult", [
     "omega_after", "impact_slipped", "impact_count", "impact_log_truncated", "max_abs_theta",
     "t_rest", "mode_time", "max_slip", "max_travel", "max_lift", "steps", "events", "energy_clamps",
     "t_final", "f_at_overturn", "a_at_overturn", "v_at_overturn", "cpu_s", "history"])
-SceneResult.__doc__ = """Result of one scene: the JSON contract of DESIGN.md section 4 plus
+SceneResult.__doc__ = """Result of one scene: the JSON contract of docs/design.md section 4 plus
 extras.  ``impact_times``, ``omega_after`` and ``impact_slipped`` hold the first ``max_log``
 impacts of ``impact_count`` (``impact_log_truncated`` when fewer); ``history`` is None or a
 dict of arrays named by ``codes.HISTORY_NAMES``.  ``max_slip`` is how far the base moved along

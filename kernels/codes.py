@@ -17,7 +17,8 @@ REST, SLIDE, ROTATION, SLIDE_ROTATION, TRANSLATION_JUMP, ROTATION_JUMP = range(6
 MODE_NAMES = ("rest", "slide", "rotation", "slide_rotation", "translation_jump", "rotation_jump")
 N_MODES = 6
 
-# --- the full state q = (x, y, theta, u, v, omega) of G relative to the floor (PHYSICS 1.1)
+# --- the full state q = (x, y, theta, u, v, omega) of G relative to the floor ------------
+# (docs/physics.md 1.1)
 IX, IY, ITHETA, IU, IV, IOMEGA = range(6)
 N_STATE = 6
 # the mode's contact: corner s (-1 left, +1 right), slip direction sigma, pivot or rest x;
@@ -62,9 +63,9 @@ LAW_LOG, LAW_LINEAR = 0, 1
 HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
 
 # --- landing laws after a translation jump (scene key ``contact.landing``) -----------------
-# flat: the two-contact impulse (PHYSICS 2.3); face_friction: one contact at the middle of
+# flat: the two-contact impulse (docs/physics.md 2.3); face_friction: one contact at the middle of
 # the base whose friction impulse turns the body; corner: the leading corner strikes first
-# (PHYSICS 2.2).  docs/landing.md derives them.
+# (docs/physics.md 2.2).  docs/landing.md derives them.
 LANDING_FLAT, LANDING_FACE_FRICTION, LANDING_CORNER = range(3)
 LANDING_NAMES = ("flat", "face_friction", "corner")
 

@@ -1,4 +1,4 @@
-"""Single-corner impact with the friction-limited impulse (PHYSICS.md 2.2).
+"""Single-corner impact with the friction-limited impulse (docs/physics.md 2.2).
 
 Pre- to post-impact velocities of the full state q; impulses per unit mass.  The tangential
 impulse is (1 + e_x) times the impulse that would stop the corner's tangential velocity

@@ -117,7 +117,7 @@ def run_scene(row, rec, res, log, hist, ctl, work):
 
     References
     ----------
-    PHYSICS.md sections 1-3; DESIGN.md section 3.
+    docs/physics.md sections 1-3; docs/design.md section 3.
     """
     scene = scene_of(row)
     body, contact, floor, solver, _ = scene

@@ -1,4 +1,4 @@
-"""Event functions of each mode (PHYSICS.md 1.3).
+"""Event functions of each mode (docs/physics.md 1.3).
 
 Every event is written g(t, q) > 0 while the mode holds and fires when g reaches 0 from
 above: an impact (the body side -s theta, a corner gap), lift-off (N_c), the onset of slip

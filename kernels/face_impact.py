@@ -1,5 +1,5 @@
 """Impact with the face flat, theta = 0: the landing after a translation jump and the
-rocking impact of the other corner (PHYSICS.md 2.1-2.3, docs/landing.md).
+rocking impact of the other corner (docs/physics.md 2.1-2.3, docs/landing.md).
 
 Both corners get Newton's normal target -e_y V_n- (0 for a corner not approaching); the
 total tangential impulse acts at the height -h below G.  The two-contact solution is taken
@@ -26,7 +26,7 @@ SEQUENTIAL_IMPACTS = 50  # at most this many alternating corner impacts in one f
 
 @jit
 def face_impulses(q, body, contact):
-    """Two-contact impulses (P_L, P_R, P_t, flags) with the face flat (PHYSICS 2.3,
+    """Two-contact impulses (P_L, P_R, P_t, flags) with the face flat (docs/physics.md 2.3,
     generalised to omega != 0 as the velocity-level two-contact problem), with the surface
     friction: the tangential impulse is (1 + e_x) times the sticking one, capped by the
     friction cone |P_t| <= mu_s (P_L + P_R), beyond which it slips with mu_k.
@@ -104,7 +104,7 @@ def striking_corner(q, body):
     """The corner moving faster into the floor with the face flat (-1 left, +1 right).  On
     a tie, omega = 0 (a landing), the leading corner, on the side u points to: the friction
     impulse against u loads it and unloads the trailing one, whose normal impulse is the
-    one that turns negative (PHYSICS 2.3, docs/landing.md).  With u = 0 too the two-contact
+    one that turns negative (docs/physics.md 2.3, docs/landing.md).  With u = 0 too the two-contact
     impulse has P_t = 0 and both normal impulses > 0, so no single corner is asked for."""
     VL = corner_velocity(q, -1.0, body)[1]
     VR = corner_velocity(q, 1.0, body)[1]
@@ -122,7 +122,7 @@ def approaches(q, s, body):
 
 @jit
 def corner_sequence(q, s, body, contact):
-    """Single-corner impacts (PHYSICS 2.2) at theta = 0: corner s, then the other in turn
+    """Single-corner impacts (docs/physics.md 2.2) at theta = 0: corner s, then the other in turn
     while the last one drives it into the floor; updates q, returns the flag bits
     (``CLAMPED`` too if ``SEQUENTIAL_IMPACTS`` did not end it)."""
     flags = 0
@@ -141,7 +141,7 @@ def landing_impact(q, body, contact):
     """Landing after a translation jump (theta = omega = 0) by the contact's law
     (``codes.LANDING_*``); updates q, returns the flag bits.
 
-    flat: ``face_impact``, the two-contact impulse (PHYSICS 2.3).  face_friction: the
+    flat: ``face_impact``, the two-contact impulse (docs/physics.md 2.3).  face_friction: the
     two-coefficient impact (2.2) of the point of the base below G (the middle of a symmetric
     body) with the surface's friction, whose tangential impulse, h below G, turns the body
     (docs/landing.md (L3)); a corner that rotation drives into the floor then strikes, and

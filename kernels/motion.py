@@ -1,4 +1,4 @@
-"""Equations of motion of the six modes (PHYSICS.md section 1.2), in the floor frame.
+"""Equations of motion of the six modes (docs/physics.md section 1.2), in the floor frame.
 
 Each mode integrates only its own degrees of freedom, packed in a compact state ``z``:
 
@@ -51,7 +51,7 @@ def half_base(s, body):
 @jit(inline="always")
 def corner(s, theta, body):
     """Vector r_c from G to corner s (-1 left, +1 right; 0 the point of the base below G) at
-    angle theta (PHYSICS 1.1, docs/bodies.md): (s b_s cos theta + h sin theta,
+    angle theta (docs/physics.md 1.1, docs/bodies.md): (s b_s cos theta + h sin theta,
     s b_s sin theta - h cos theta)."""
     b = half_base(s, body)
     h = body.h
@@ -81,7 +81,7 @@ def sliding_friction(sigma, body, contact):
 
 @jit(inline="always")
 def rotation_dynamics(theta, omega, s, a_x, g_e, body):
-    """Rocking about the fixed corner s: (theta'', F_c/m, N_c/m), PHYSICS 1.2 (3).
+    """Rocking about the fixed corner s: (theta'', F_c/m, N_c/m), docs/physics.md 1.2 (3).
 
     rho = -r_c points from the pivot to G; (i^2 + R_s^2) theta'' = a_x rho_y - g_e rho_x.
     """
@@ -97,7 +97,7 @@ def rotation_dynamics(theta, omega, s, a_x, g_e, body):
 
 @jit(inline="always")
 def slide_rotation_dynamics(theta, omega, s, sigma, a_x, g_e, body, mu):
-    """One corner on the floor and slipping with sgn(V_cx) = sigma, PHYSICS 1.2 (4).
+    """One corner on the floor and slipping with sgn(V_cx) = sigma, docs/physics.md 1.2 (4).
 
     Returns (theta'', u'', N_c/m, D); D <= 0 is the Painleve condition.
     """

@@ -1,7 +1,7 @@
 """Rest without stepping: the next instant at which the floor can move a resting body.
 
 A body at rest leaves rest when |a_x| > mu_s g_e, |a_x| > (b_s/h) g_e or g_e < 0
-(PHYSICS.md 1.3; s the corner the floor drives the body towards: b1 for a_x > 0, b2 for
+(docs/physics.md 1.3; s the corner the floor drives the body towards: b1 for a_x > 0, b2 for
 a_x < 0), i.e. when phi(t) = max(a_x - kappa_+ g_e, -a_x - kappa_- g_e) > 0 with
 kappa_+ = min(mu_s, b1/h) and kappa_- = min(mu_s, b2/h) (|a_x| - kappa g_e for a symmetric
 body).

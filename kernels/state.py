@@ -10,7 +10,7 @@ scalars: numba passes a tuple element by element, which in the step loop would c
 as the physics.  ``WORK_DTYPE`` holds every buffer of a scene in one record (one
 allocation); a ``Step`` is one taken step, which the dense output, the event search and the
 extremes read.  SI units, per unit mass; b1, b2 are the distances from G to the corners
-along the base and h the height of G (PHYSICS.md 1.1, docs/bodies.md).
+along the base and h the height of G (docs/physics.md 1.1, docs/bodies.md).
 """
 from collections import namedtuple
 

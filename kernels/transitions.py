@@ -1,4 +1,4 @@
-"""The mode table: which mode a body is in, and what each event leads to (PHYSICS.md 1.3,
+"""The mode table: which mode a body is in, and what each event leads to (docs/physics.md 1.3,
 2 and 3.1).  Modes are the paper's six motion types (``codes``); events are those of
 ``events``.
 
@@ -53,17 +53,17 @@ NOT_AN_IMPACT = -1       # impact flags of an event that was not an impact
 
 @jit
 def mu_required(A, b, h, i2):
-    """Friction needed for pure rocking at onset, Shenton's mu_req(A) (PHYSICS 1.3)."""
+    """Friction needed for pure rocking at onset, Shenton's mu_req(A) (docs/physics.md 1.3)."""
     return (A * (i2 + b * b) + b * h) / ((i2 + h * h) + A * b * h)
 
 
 @jit
 def leave_rest(a_x, g_e, body, contact):
-    """The rest table of PHYSICS 1.3 with A = |a_x|/g_e and beta = b_s/h, tan alpha of the
+    """The rest table of docs/physics.md 1.3 with A = |a_x|/g_e and beta = b_s/h, tan alpha of the
     corner s the floor drives the body towards (docs/bodies.md).
 
     Beyond A > beta rest has no consistent contact force (the other corner's normal force
-    would be negative, PHYSICS 1.2 (1)).  Rocking needs the pivot to stick both as the
+    would be negative, docs/physics.md 1.2 (1)).  Rocking needs the pivot to stick both as the
     face's edge at onset (mu_s, as the table) and as the lone corner once the other lifts
     (mu_edge_s, rotation's own slip test); slide rotation needs mu_edge_k > beta to lift the
     other corner.  Failing both, the face slides backwards, even with A <= mu_s: the
@@ -93,7 +93,7 @@ def leave_rest(a_x, g_e, body, contact):
 @jit
 def start_slide(sigma, body, contact):
     """Flat sliding with sgn(u) = sigma; with mu_k > b_s/h (s = sigma, the leading corner)
-    the body trips over that corner instead (one normal force would turn negative, PHYSICS
+    the body trips over that corner instead (one normal force would turn negative, docs/physics.md
     1.2 (2))."""
     if sliding_friction(sigma, body, contact) > half_base(sigma, body) / body.h:
         return SLIDE_ROTATION, sigma, sigma
@@ -133,7 +133,7 @@ def unstick(q, s, sigma_f, a_x, g_e, body, mu):
 
     The corner flies if gravity alone lets it rise: its free acceleration
     -(g_e + omega^2 r_cy) >= 0.  Otherwise the floor pushes (N_slip = (g_e + omega^2 r_cy)/D
-    > 0, PHYSICS 1.2 (4)) and the corner slips in the direction sigma in which its own
+    > 0, docs/physics.md 1.2 (4)) and the corner slips in the direction sigma in which its own
     tangential acceleration u'' - theta'' r_cy - omega^2 r_cx points; sigma_f (against the
     sticking friction force) when neither direction is consistent.
     """
@@ -302,7 +302,7 @@ def on_event(k, mode, t, q, ctx, scene, rec, lasted):
 @jit
 def painleve_at_entry(mode, s, sigma, t, q, scene, rec):
     """Whether slide rotation, entered now, has no consistent contact force (D <= 0,
-    PHYSICS 3.2)."""
+    docs/physics.md 3.2)."""
     if mode != SLIDE_ROTATION:
         return False
     a_x, a_y = ground(t, scene.floor, rec)

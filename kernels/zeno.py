@@ -1,4 +1,4 @@
-"""Zeno closure (PHYSICS.md 3.1): contacts that would close again within ``zeno_dt``.
+"""Zeno closure (docs/physics.md 3.1): contacts that would close again within ``zeno_dt``.
 
 An accumulation of impacts (a bounce or rocking decaying geometrically) would take
 infinitely many events in finite time.  The kernel closes it: a corner moving away from the

@@ -12,7 +12,7 @@ Eqs. (9)/(10).
 
 Every function takes the full breadth ``B`` and height ``H`` [m] (b = B/2, h = H/2) and, where
 it uses it, the radius of gyration ``i_g`` about G [m]; ``i_g=None`` means a uniform rectangle
-(i^2 = (B^2 + H^2)/12).  Inputs may be numpy arrays; symbols as PHYSICS.md 1.1.  A body whose
+(i^2 = (B^2 + H^2)/12).  Inputs may be numpy arrays; symbols as docs/physics.md 1.1.  A body whose
 G is off the middle (``centre`` = (x_G, y_G) from the middle of the base, docs/bodies.md) has
 its constants per side (:func:`body_sides`); where one number is asked for (``west``, ``v_H``,
 ``alpha``), the smaller side's governs: the body tips or overturns first that way.
@@ -24,7 +24,7 @@ import numpy as np
 from kernels.codes import G  # standard gravity [m/s^2], the kernel's
 
 BodyConstants = namedtuple("BodyConstants", "b h r alpha i2 p eta")
-BodyConstants.__doc__ = """Derived constants of a rectangular body (PHYSICS.md 1.1, 2.1).
+BodyConstants.__doc__ = """Derived constants of a rectangular body (docs/physics.md 1.1, 2.1).
 
 b, h : half-breadth, half-height [m]; r : corner-centroid distance [m]; alpha : slenderness
 angle atan(b/h) [rad]; i2 : i^2 [m^2]; p : frequency parameter sqrt(g r/(i^2 + r^2)) [1/s];
@@ -56,7 +56,7 @@ def body_constants(B, H, i_g=None, g=G):
 
     References
     ----------
-    PHYSICS.md 1.1 (notation) and 2.1 (eta).
+    docs/physics.md 1.1 (notation) and 2.1 (eta).
     """
     b, h = 0.5 * np.asarray(B, float), 0.5 * np.asarray(H, float)
     r2 = b * b + h * h

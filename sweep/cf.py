@@ -1,4 +1,4 @@
-"""Every dataset the package writes (DESIGN.md section 6): one metadata table, the Dataset
+"""Every dataset the package writes (docs/design.md section 6): one metadata table, the Dataset
 builders, one encoding.
 
 The table describes each variable once as a :class:`Variable` (dtype, CF ``units`` and
@@ -78,7 +78,7 @@ VARIABLES = {
     "energy_clamps": Variable("int32", "1", "impacts whose restitution was clamped to gain "
                                             "no energy",
                               comment="a plastic law replaced the impact law, which would "
-                                      "have gained energy (PHYSICS.md section 3); every "
+                                      "have gained energy (docs/physics.md section 3); every "
                                       "impact clamped: check e_x, e_y"),
     "f_at_overturn": Variable("float64", "Hz", "floor frequency at overturning",
                               comment="instantaneous frequency of a sweep or sine; "

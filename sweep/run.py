@@ -1,5 +1,5 @@
 """``python -m sweep.run STUDY.yaml``: run a study over MPI ranks into one labelled netCDF
-dataset (DESIGN.md sections 5-7).
+dataset (docs/design.md sections 5-7).
 
     python -m sweep.run STUDY.yaml [--dry-run] [--force] [--quiet] [--chunk-size N]
                                    [--seed N] [-o OUTPUT.nc] [--max-cells N]

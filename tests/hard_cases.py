@@ -1,4 +1,4 @@
-"""Numerically hard scenes (PHYSICS.md section 3) and the physics their results must obey.
+"""Numerically hard scenes (docs/physics.md section 3) and the physics their results must obey.
 
 Shared by ``tests/kernels/test_stability.py`` (assertions) and the report's stability section
 (numbers).  Every check compares the kernel with something that does not come from it: the
@@ -23,7 +23,7 @@ BETA = B / H
 WEST = BETA * G                        # West's acceleration (b/h) g of the default block
 HOUSNER = {"mu": 10.0, "e_x": 0.0, "e_y": 0.0}
 PAPER = {"mu": 0.4, "e_x": -0.8, "e_y": 0.2}     # the contact of the paper's Figs 3 and 5
-MU_PAINLEVE = 4.0 / 3.0                # PHYSICS 3.2: no Painleve case below this edge friction
+MU_PAINLEVE = 4.0 / 3.0  # docs/physics.md 3.2: no Painleve case below this edge friction
 
 
 def resolved(scene):
@@ -53,7 +53,7 @@ def near_threshold(excess, contact, frequency=2.0, forcing=5.0, t_end=8.0, **sol
 
 def burst_bound(frequency, zeno_dt, eta):
     """Impacts of one burst (rest to Zeno closure) of free rocking whose first flight lasts
-    half a period: flights shrink by eta per impact (PHYSICS 3.1) down to zeno_dt."""
+    half a period: flights shrink by eta per impact (docs/physics.md 3.1) down to zeno_dt."""
     return math.ceil(math.log(0.5 / frequency / zeno_dt) / math.log(1.0 / eta)) + 1
 
 
@@ -82,8 +82,8 @@ def lockstep(result, resolved_scene, rtol=1e-12, atol=1e-16):
     Each flight starts from the kernel's state after the previous impact (theta = 0 and its
     omega+, or rest when it closed to face contact) and is integrated by
     ``scipy_rocking.housner_rocking`` to the next impact, which gives t and omega- there;
-    Housner's law (PHYSICS 2.1) gives omega+ = eta omega-.  A Zeno closure is due when the
-    flight after the impact, 2|omega+|/|theta''| at theta = 0 (PHYSICS 1.2 (3)), would last
+    Housner's law (docs/physics.md 2.1) gives omega+ = eta omega-.  A Zeno closure is due when the
+    flight after the impact, 2|omega+|/|theta''| at theta = 0 (docs/physics.md 1.2 (3)), would last
     less than ``zeno_dt`` (README, Conventions).
     """
     body, solver = resolved_scene["body"], resolved_scene["solver"]

@@ -1,18 +1,18 @@
 """Slow, obviously correct reference versions of single kernel modes (STUMPY's ``naive.py``).
 
-Plain numpy/scipy, written from PHYSICS.md and DESIGN.md section 4 alone, independent of
+Plain numpy/scipy, written from docs/physics.md and docs/design.md section 4 alone, independent of
 ``kernels``; the tests compare the kernel with them event by event, and the work-precision
 benchmark (``benchmarks/``, which imports this module) runs the same programs against it:
 
-* ``housner_rocking``: the rocking-only model (mode 3 of PHYSICS 1.2: rocking about a corner,
-  no slip, no lift-off) integrated by ``scipy.integrate.solve_ivp`` (DOP853, with event
-  location), Housner's impact omega+ = eta omega- (PHYSICS 2.1) at every return to theta = 0,
-  rest until |a_x| > (b/h)(g + a_y) (PHYSICS 1.3); floor motions ``sine``, ``sweep`` and
+* ``housner_rocking``: the rocking-only model (mode 3 of docs/physics.md 1.2: rocking about a
+  corner, no slip, no lift-off) integrated by ``scipy.integrate.solve_ivp`` (DOP853, with event
+  location), Housner's impact omega+ = eta omega- (docs/physics.md 2.1) at every return to theta =
+  0, rest until |a_x| > (b/h)(g + a_y) (docs/physics.md 1.3); floor motions ``sine``, ``sweep`` and
   ``record``.  It is what a user would write with scipy.
 * ``free_rocking_impact_times`` and ``zeno_time``: free rocking from rest at theta0 by
-  quadrature of the energy integral and the amplitude map of PHYSICS A4;
+  quadrature of the energy integral and the amplitude map of docs/physics.md A4;
 * ``rigid_plastic_slide``: flat stick-slip sliding (mode 2) under a_x(t), Newmark's
-  rigid-plastic block (PHYSICS A6), integrated piecewise with solve_ivp.
+  rigid-plastic block (docs/physics.md A6), integrated piecewise with solve_ivp.
 
 Units SI, g = 9.80665 m/s^2; theta > 0 is rotation about the left corner, driven by a_x > 0.
 """
@@ -26,7 +26,8 @@ G = 9.80665
 
 
 def body_constants(B, H, i2=None):
-    """(b, h, r, alpha, i2, eta, p) of a uniform (or given i2) rectangle B x H (PHYSICS 1.1)."""
+    """(b, h, r, alpha, i2, eta, p) of a uniform (or given i2) rectangle B x H (docs/physics.md
+    1.1)."""
     b, h = 0.5 * B, 0.5 * H
     r = math.hypot(b, h)
     alpha = math.atan2(b, h)
@@ -44,7 +45,7 @@ def sine(amplitude, frequency, phase=0.0):
 
 def sweep(amplitude, f_start, f_stop, duration, phase=0.0):
     """Constant-acceleration log sweep: a = A sin(2 pi f_start (e^(k t) - 1)/k + phase),
-    k = ln(f_stop/f_start)/duration, zero after ``duration`` (DESIGN.md 4)."""
+    k = ln(f_stop/f_start)/duration, zero after ``duration`` (docs/design.md 4)."""
     k = math.log(f_stop / f_start) / duration
 
     def a(t):
@@ -71,11 +72,11 @@ def housner_rocking(B, H, a_x=_zero, a_y=_zero, theta0=0.0, omega0=0.0, t_end=10
     """Rocking-only response (no slip, no jump) with Housner's impact law.
 
     Starts at ``t_start``; at rest (theta0 = omega0 = 0) until |a_x| > (b/h)(g + a_y) (the rest
-    exit is found by brentq on a fine scan), then integrates theta'' of PHYSICS 1.2 (3) side
-    by side, one half-cycle per ``solve_ivp`` call, with a terminal event at theta = 0.  An
-    impact whose post-impact |omega| is below ``zeno_omega`` while the floor cannot lift the
-    body closes to rest (the classical Zeno closure).  ``max_step`` bounds solve_ivp's step (the tests' 0.01 s
-    keeps a step from jumping over a brief return to theta = 0; ``math.inf`` is scipy's
+    exit is found by brentq on a fine scan), then integrates theta'' of docs/physics.md 1.2 (3)
+    side by side, one half-cycle per ``solve_ivp`` call, with a terminal event at theta = 0.  An
+    impact whose post-impact |omega| is below ``zeno_omega`` while the floor cannot lift the body
+    closes to rest (the classical Zeno closure).  ``max_step`` bounds solve_ivp's step (the tests'
+    0.01 s keeps a step from jumping over a brief return to theta = 0; ``math.inf`` is scipy's
     default).
 
     Returns a dict: impact_times, omega_before, omega_after (lists), overturned (bool),
@@ -183,7 +184,7 @@ def _next_amplitude(theta_n, alpha, eta):
 
 
 def free_rocking_impact_times(B, H, theta0, n):
-    """First n impact times of free rocking from rest at theta0 (PHYSICS A4 method).
+    """First n impact times of free rocking from rest at theta0 (docs/physics.md A4 method).
 
     Half-cycle times by quadrature, amplitude map
     cos(alpha - theta_{n+1}) = cos(alpha) + eta^2 [cos(alpha - theta_n) - cos(alpha)].
@@ -200,7 +201,7 @@ def free_rocking_impact_times(B, H, theta0, n):
 
 
 def zeno_time(B, H, theta0):
-    """Accumulation time of the impacts of free rocking from rest at theta0 (PHYSICS A4).
+    """Accumulation time of the impacts of free rocking from rest at theta0 (docs/physics.md A4).
 
     Sums the half-cycles until the amplitude is below 1e-12 alpha, then adds the geometric
     tail: for small amplitudes theta_{n+1} = eta^2 theta_n and the half-cycle time, which
@@ -216,7 +217,7 @@ def zeno_time(B, H, theta0):
 
 
 def rigid_plastic_slide(a_x, mu, t_end, breaks=(), rtol=1e-12, atol=1e-14, mu_stick=None):
-    """Newmark's rigid-plastic sliding block on a horizontal floor (PHYSICS 1.2 (2), A6).
+    """Newmark's rigid-plastic sliding block on a horizontal floor (docs/physics.md 1.2 (2), A6).
 
     Kinetic friction mu, static mu_stick (default mu), no rocking.  Stick -> slip when
     |a_x| > mu_stick g; slip -> stick when u = 0 and |a_x| <= mu_stick g, else the slip

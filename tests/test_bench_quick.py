@@ -87,7 +87,7 @@ def test_quick_study_keeps_two_values_per_axis():
 
 @pytest.mark.parametrize("key", ["sweep", "el_centro"])
 def test_scipy_floor_motion_is_the_kernels(key):
-    """The scipy program's floor motion (written from DESIGN.md 4) equals the kernel's
+    """The scipy program's floor motion (written from docs/design.md 4) equals the kernel's
     a_x, a_y in the history to 1e-12 m/s^2 on the sweep and on El Centro NS + UD."""
     scene = next(s for s in scenes.SCENES if s.key == key)
     resolved = {**scene.resolved, "solver": {**scene.resolved["solver"], "t_end": 10.0,
@@ -119,9 +119,9 @@ def test_quick_benchmark_run(tmp_path):
 
 
 def test_floor_loop_meets_the_free_rocking_anchor_and_the_kernel():
-    """The floor (the kernel's tableau, rocking only) against PHYSICS A4's quadrature on free
-    rocking, and against the kernel's impact times on steady rocking and on the 60 s log
-    sweep (Housner's impact)."""
+    """The floor (the kernel's tableau, rocking only) against docs/physics.md A4's quadrature on
+    free rocking, and against the kernel's impact times on steady rocking and on the 60 s log sweep
+    (Housner's impact)."""
     free = next(s for s in scenes.SCENES if s.key == "free_rocking")
     out = floor.run(free.resolved, 1e-10, 1e-12)
     assert scenes.error(scenes.Outcome.of_scipy(out), free.anchor(), free)[0] < 1e-9

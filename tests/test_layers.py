@@ -1,4 +1,4 @@
-"""Every import points down the layers (DESIGN.md section 2; issue 21).
+"""Every import points down the layers (docs/design.md section 2; issue 21).
 
 Each module of ``kernels`` and ``sweep`` is read with ``ast`` (nothing is imported), and every
 import statement in it, at module level or inside a function, absolute or relative, is

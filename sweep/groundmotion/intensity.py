@@ -1,4 +1,4 @@
-"""Intensity measures of a floor acceleration history (PROBABILITY.md section 2).
+"""Intensity measures of a floor acceleration history (docs/probability.md section 2).
 
 PGA is read from the acceleration as it is applied.  PGV and PGD are peaks of the velocity and
 displacement integrated (trapezoidal rule) after a baseline correction: a zero-phase 4th-order

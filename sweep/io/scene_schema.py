@@ -1,4 +1,4 @@
-"""Scene files (DESIGN.md section 4): validation into pydantic models, and resolution into SI.
+"""Scene files (docs/design.md section 4): validation into pydantic models, and resolution into SI.
 
 ``load_scene`` reads a YAML file (or takes a dict), checks it and reports every problem at
 once as :class:`~sweep.io.problems.FileProblems` with dotted paths; ``resolve_scene`` turns the
@@ -559,7 +559,7 @@ class Initial(StrictModel):
 
 
 class Solver(StrictModel):
-    """Integrator and guards (PHYSICS.md 3); ``t_end`` and ``dt_out`` (the history's sampling)
+    """Integrator and guards (docs/physics.md 3); ``t_end`` and ``dt_out`` (the history's sampling)
     default from the excitation."""
 
     method: Optional[Literal["adaptive", "fixed"]] = Field(
@@ -585,7 +585,7 @@ class Solver(StrictModel):
 
 
 class Scene(StrictModel):
-    """A scene file (DESIGN.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
+    """A scene file (docs/design.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
 
     body: Body = Field(description="the rigid block")
     contact: Contact = Field(default_factory=Contact, description="friction and restitution")

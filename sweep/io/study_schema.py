@@ -1,4 +1,4 @@
-"""Study files (DESIGN.md section 5): a base scene, the axes to vary, zip groups, the output.
+"""Study files (docs/design.md section 5): a base scene, the axes to vary, zip groups, the output.
 
 ``load_study`` reads a YAML file (or takes a dict) and validates it as one model,
 :class:`StudyFile`: its fields check the sections and keys (with ``RangeSpec`` and
@@ -216,8 +216,8 @@ AXIS_NAMES = {"type": "array", "minItems": 2, "items": {"type": "string"}}  # a 
 
 
 class StudyFile(StrictModel):
-    """The sections of a study file (DESIGN.md section 5); axes, zip groups and the refined axis
-    are checked against each other and the scene by :func:`load_study`."""
+    """The sections of a study file (docs/design.md section 5); axes, zip groups and the refined
+    axis are checked against each other and the scene by :func:`load_study`."""
 
     name: Optional[NonEmptyText] = Field(None, description="the study's name (default: the "
                                                           "file's); the output is named after it")

@@ -3,7 +3,7 @@
 Every function takes the full breadth ``B`` and height ``H`` [m] of a rectangular body (b = B/2,
 h = H/2) and, where the paper uses it, the radius of gyration ``i_g`` about G [m]; ``i_g=None``
 means a uniform rectangle (i^2 = r^2/3).  Energies are per unit mass.  Inputs may be numpy arrays.
-Equation numbers are the paper's (``paper/ishiyama-overturning.md``); symbols as PHYSICS.md 1.1.
+Equation numbers are the paper's (Ishiyama 1982); symbols as docs/physics.md 1.1.
 ``G``, :func:`body_constants`, West's acceleration (Eq. 1, :func:`west_acceleration`) and the
 single-shock velocity v_H (Eqs. 9/10, :func:`single_shock_velocity`) are the body's scales that
 the units of scene files need too: they are defined in ``sweep.bodies``, below ``io``, and
@@ -57,7 +57,7 @@ def housner_overturn_time(B, H, a, i_g=None, g=G):
     cosh(p t_o) = 1 + 1/(2 x (x - 1)) with x = a/(g alpha) and p = sqrt(g r/(i^2 + r^2)): after the
     acceleration stops the body still escapes (small-alpha, linearized).  The printed exponent
     sqrt(g alpha/(i^2 + r^2)) has the dimension 1/sqrt(m s^2); p is the form the derivation
-    gives (the linearized escape condition e^(p t_o) = x/(x - 1) of PHYSICS.md A8, whose
+    gives (the linearized escape condition e^(p t_o) = x/(x - 1) of docs/physics.md A8, whose
     cosh is the right-hand side above).  NaN when a <= g alpha (the body never overturns).
     """
     c = body_constants(B, H, i_g, g)
@@ -153,8 +153,8 @@ def critical_period(B, H, i_g=None, g=G):
     """Period T_c = 2 pi v_o/a_o at point P of the normalized plane, Eq. (20) [s].
 
     The paper prints T_c = 2 pi a_o/v_o = 2 pi v_o/d_o, which has the dimension of a frequency
-    (PHYSICS.md A11).  The period at which a sinusoid of acceleration amplitude a_o has velocity
-    amplitude v_o is 2 pi v_o/a_o = 2 pi d_o/v_o, and that is what is returned.
+    (docs/physics.md A11).  The period at which a sinusoid of acceleration amplitude a_o has
+    velocity amplitude v_o is 2 pi v_o/a_o = 2 pi d_o/v_o, and that is what is returned.
     """
     return 2.0 * np.pi * ishiyama_velocity(B, H, i_g, g) / ishiyama_acceleration(B, H, g)
 

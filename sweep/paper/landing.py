@@ -3,7 +3,7 @@ docs/landing.md): every cell of a landing study classified as sliding, tilting f
 and standing, or overturning forward or back, for ``sweep.plots.landing`` to draw.
 
 "Forward" is the direction of the horizontal velocity at release: theta < 0 for x_dot >= 0
-(rotation about the right corner, PHYSICS.md 1.1).  The dataset says whether and to which
+(rotation about the right corner, docs/physics.md 1.1).  The dataset says whether and to which
 side a body overturned (``overturned``, ``overturn_direction``) and how far it tilted
 (``max_abs_theta``), not to which side a body that stood tilted: those cells are simulated
 again with their history (as ``sweep.paper.classify`` does for Figs 11-16) and the side of

@@ -1,7 +1,7 @@
 """Fig. 17 of Ishiyama (1982): lower limits to overturn a homogeneous rectangular body.
 
 Closed forms only (``sweep.paper.criteria``), no simulation: a_o of Eq. (14), v_o of Eq. (16),
-d_o of Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, PHYSICS.md A11)
+d_o of Eq. (18) and the period T_c of Eq. (20) (corrected to 2 pi v_o/a_o, docs/physics.md A11)
 against the height H, one curve per breadth B, in the paper's units (cm, gal, cm/s, s); the
 slender-body rules of Eqs. (17), (19), (21) dashed.  Each panel's legend (its equations; the
 breadths on the first) sits in a corner its curves leave free (``style.place_legends``).

@@ -7,7 +7,7 @@ e.g. ``studies/rocking_spectrum_elcentro.yaml``) is read like a response spectru
 rotation over the slenderness angle along y, and the overturned blocks as marks in a band above
 |theta|/alpha = 1, one row per line.  Each cell's body and motion come from the study kept in
 the dataset's attributes (``sweep.paper.classify.study_of``), so any axes that set the body
-work.  SI units throughout; PHYSICS.md 1.1 for the symbols.  The title takes two lines at most
+work.  SI units throughout; docs/physics.md 1.1 for the symbols.  The title takes two lines at most
 (the study; its motion, peaks and contact) and the legend a corner free of lines and marks,
 else the outside of the axes (``style.place_legend``).
 """
@@ -46,7 +46,7 @@ def cell_blocks(ds):
 
     References
     ----------
-    PHYSICS.md 1.1: p^2 = g r/(i^2 + r^2), uniform rectangle i^2 = r^2/3.
+    docs/physics.md 1.1: p^2 = g r/(i^2 + r^2), uniform rectangle i^2 = r^2/3.
     """
     study = classify.study_of(ds)
     columns = np.empty((study.n_cells, 3))

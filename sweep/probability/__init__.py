@@ -1,4 +1,4 @@
-"""Probabilities from ensembles of simulations (PROBABILITY.md sections 3-4).
+"""Probabilities from ensembles of simulations (docs/probability.md sections 3-4).
 
 The fragility layer: ``intervals``, binomial proportion intervals (Wilson, Clopper-Pearson);
 ``fit``, lognormal fragility functions and the two-parameter (PGA, PGV) surface fitted by

@@ -1,4 +1,4 @@
-"""Fragility functions fitted by maximum likelihood (PROBABILITY.md section 4).
+"""Fragility functions fitted by maximum likelihood (docs/probability.md section 4).
 
 Lognormal fragility P(x) = Φ(ln(x/θ)/β): a probit GLM of the outcome on ln x, P = Φ(b0 + b1
 ln x), so θ = exp(−b0/b1) and β = 1/b1 (Baker 2015, Earthquake Spectra 31).  The data are
@@ -252,7 +252,7 @@ def fit_lognormal(x, k, n=1, members=None, *, confidence=0.95, interval="bootstr
 
     References
     ----------
-    Baker, J. W. (2015), Earthquake Spectra 31, 579-599; PROBABILITY.md section 4.
+    Baker, J. W. (2015), Earthquake Spectra 31, 579-599; docs/probability.md section 4.
     """
     validate_confidence(confidence)
     if interval not in INTERVALS:

@@ -14,7 +14,7 @@ read from
   time, the units of ``im`` stated.
 
 Probabilities of exceedance become rates by the Poisson model, λ = −ln(1 − P)/T
-(:func:`rate_from_poe`; PROBABILITY.md §9).  Between levels the curve is a power law (straight
+(:func:`rate_from_poe`; docs/probability.md §9).  Between levels the curve is a power law (straight
 in log–log), λ(x) = λ_i (x/x_i)^(−k_i) (:meth:`HazardCurve.rate`).  Problems of a file raise
 :class:`HazardFileError`, one line each, with the file and where in it.
 """

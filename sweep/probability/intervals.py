@@ -2,7 +2,7 @@
 
 Wilson's score interval (Wilson 1927, J. Am. Stat. Assoc. 22) and the exact interval of
 Clopper & Pearson (1934, Biometrika 26), both vectorized over arrays of ``k`` and ``n``.  Both
-stay inside [0, 1] and are sensible at k = 0 and k = n (PROBABILITY.md section 3).  n = 0
+stay inside [0, 1] and are sensible at k = 0 and k = n (docs/probability.md section 3).  n = 0
 gives NaN.
 """
 from statistics import NormalDist
@@ -55,7 +55,7 @@ def wilson_interval(k, n, confidence=0.95):
 
     References
     ----------
-    Wilson, E. B. (1927), J. Am. Stat. Assoc. 22, 209-212; PROBABILITY.md section 3.
+    Wilson, E. B. (1927), J. Am. Stat. Assoc. 22, 209-212; docs/probability.md section 3.
     """
     k, n = _counts(k, n)
     z = normal_quantile(confidence)

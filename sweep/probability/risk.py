@@ -1,6 +1,6 @@
 """The annual rate of overturning at a site: a lognormal fragility on a hazard curve.
 
-The risk integral (Cornell & Krawinkler 2000; PROBABILITY.md §9), summed over the segments of
+The risk integral (Cornell & Krawinkler 2000; docs/probability.md §9), summed over the segments of
 the tabulated curve, between levels x_i < x_{i+1} of which the curve is a power law
 λ(x) = λ_i (x/x_i)^(−k_i) (log–log interpolation):
 

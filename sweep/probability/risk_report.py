@@ -4,7 +4,7 @@ of a grid, and the results as JSON-ready dicts and a CF dataset (docs/risk.md).
 :func:`compute` takes a checked risk file (``sweep.io.risk_schema.RiskSpec``) and returns a
 :class:`RiskOutcome`; :func:`known` does the same for a hazard curve and a known lognormal
 fragility, without simulating.  :func:`body_record` is the JSON of one body (the keys of
-DESIGN.md §12), :func:`to_dataset` the netCDF dataset.  SI units.
+docs/design.md §12), :func:`to_dataset` the netCDF dataset.  SI units.
 """
 from dataclasses import dataclass, field
 
@@ -181,7 +181,7 @@ def _interval(pair):
 
 def body_record(outcome, index=()):
     """The JSON of one body: ``annual_rate``, ``probability``, ``years``, ``return_period``,
-    ``interval``, ``fragility``, ``deaggregation`` (DESIGN.md §12)."""
+    ``interval``, ``fragility``, ``deaggregation`` (docs/design.md §12)."""
     r, f = outcome.risks[index], outcome.fits[index]
     record = {"body": outcome.labels()[index]}
     record.update({d: float(outcome.body_coords[d][0][i])

@@ -1,4 +1,4 @@
-"""What bodies seen at a site tell of its shaking, in probability (PROBABILITY.md section 6).
+"""What bodies seen at a site tell of its shaking, in probability (docs/probability.md section 6).
 
 Every body of a site is simulated under an ensemble of motions (records, or synthetic motions
 of a scenario), each motion scaled to a set of PGA levels x_j.  o_ijm in {0, 1} says whether
@@ -9,7 +9,7 @@ shaking from below, those left standing (set S) from above:
   c_jm = prod_{i in O} o_ijm prod_{i in S} (1 - o_ijm) = 1.  The likelihood of x_j is the
   ensemble average L(x_j) = mean_m c_jm, taken directly from the simulations: the bodies
   shaken by the same motion are not independent, and the product of their marginal
-  probabilities is not the likelihood (PROBABILITY.md section 6).
+  probabilities is not the likelihood (docs/probability.md section 6).
 * **Posterior.**  Prior uniform in ln x over the levels; L linear in ln x between them, and 0
   at and below West's level of the most demanding overturned body, a_o = (B/H) g, below which
   no body rocks without vertical motion (a knot added there).  The posterior density in ln x

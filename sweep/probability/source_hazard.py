@@ -1,5 +1,5 @@
 """Hazard of point and area sources with a truncated Gutenberg-Richter recurrence, and its
-disaggregation by magnitude and distance (PROBABILITY.md §9).
+disaggregation by magnitude and distance (docs/probability.md §9).
 
 The rate at which the intensity measure exceeds x at the site (Cornell 1968; McGuire 2004):
 

@@ -1,6 +1,6 @@
 """Grids of a study: axes to cells, zip groups, cell ids, chunks and the seeded shuffle.
 
-A study's axes (DESIGN.md section 5) are grouped into dimensions: an axis alone is a
+A study's axes (docs/design.md section 5) are grouped into dimensions: an axis alone is a
 dimension of its own, axes of a ``zip`` group share one.  Cells are numbered 0 .. n-1 in C
 order over the dimensions (the last one varies fastest), so a cell id is a flat index into the
 dataset's arrays.  Each cell's scene is the study's base scene with the cell's axis values set

@@ -356,7 +356,7 @@ def _one_line(message, category, filename, lineno, file=None, line=None):
 
 def run_file(comm, path, options):
     """Every rank's part of running the study file at ``path`` into its output, as
-    ``python -m sweep.run`` does (DESIGN.md section 7).
+    ``python -m sweep.run`` does (docs/design.md section 7).
 
     Parameters
     ----------
@@ -487,7 +487,7 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
     Returns
     -------
     xarray.Dataset
-        The dataset of DESIGN.md section 6, as ``python -m sweep.run`` writes it; for a
+        The dataset of docs/design.md section 6, as ``python -m sweep.run`` writes it; for a
         study with ``refine``, its boundaries (``cf.refine_dataset``).
 
     Raises

@@ -1,4 +1,4 @@
-"""Overturning boundaries by bisection along one axis of a study (DESIGN.md section 7).
+"""Overturning boundaries by bisection along one axis of a study (docs/design.md section 7).
 
 A study with ``refine: {axis, tolerance}`` seeks, on every *line* (one combination of the other
 axes' values), the lowest value of the refined axis at which the body overturns.  Round 0 is

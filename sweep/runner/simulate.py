@@ -1,6 +1,6 @@
 """One scene from Python: ``simulate(scene)`` takes a file path or a dict of the scene schema.
 
-The result carries the JSON fields of DESIGN.md section 4 as attributes and, when asked, the
+The result carries the JSON fields of docs/design.md section 4 as attributes and, when asked, the
 history as an xarray Dataset (``cf.history_dataset``).
 """
 import math
@@ -16,7 +16,7 @@ from ..io.records import floor_provenance
 from ..io.scene_schema import MAX_HISTORY, load_scene, resolve_scene
 from .verdict import fall_side, verdict
 
-# The keys of DESIGN.md section 4 that scripts read: every one is in the JSON.
+# The keys of docs/design.md section 4 that scripts read: every one is in the JSON.
 JSON_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "impact_times",
              "omega_after", "max_abs_theta", "t_rest", "mode_time", "max_slip", "max_lift",
              "steps", "cpu_s")
@@ -99,7 +99,7 @@ def summary(result):
 
 def to_json_dict(result):
     """The JSON of a scene, in the order of ``SUMMARY_KEYS`` then ``IMPACT_KEYS``: the contract
-    of DESIGN.md section 4 (``JSON_KEYS``) plus the end status message, the slenderness angle,
+    of docs/design.md section 4 (``JSON_KEYS``) plus the end status message, the slenderness angle,
     the impact count (``impact_times`` holds the first ``impact_count`` impacts only when
     ``impact_log_truncated``), the impacts whose restitution was clamped, the peaks of the
     horizontal motion applied, how each record was read (``provenance``: reader, unit and

@@ -1,7 +1,7 @@
 """Scene builders and body constants shared by the kernel tests (plain Python, no kernel code).
 
 ``scene(...)`` writes the resolved-scene dict of ``kernels.api`` with one friction value for
-all four coefficients unless they are given separately; ``const(B, H)`` gives the PHYSICS.md
+all four coefficients unless they are given separately; ``const(B, H)`` gives the docs/physics.md
 1.1 constants of a uniform rectangle.  g = 9.80665 m/s^2.
 """
 import math

@@ -13,7 +13,7 @@ import naive
 from kernels.api import run_scene
 from scenes import G, const, scene, sine
 
-STEADY_A, STEADY_F = 0.5 * G, 4.0          # DESIGN 10: 1.5 west at 4 Hz, 10 s, 79 impacts
+STEADY_A, STEADY_F = 0.5 * G, 4.0          # docs/design.md 10: 1.5 west at 4 Hz, 10 s, 79 impacts
 
 
 def _compare(r, ref, atol_t, rtol_w=1e-7):
@@ -62,7 +62,7 @@ def test_free_rocking():
 
 def test_rocking_with_vertical_motion():
     """a_x = 0.5 g sin(2 pi 4 t) with a_y = 0.3 g sin(2 pi 3 t): g_e enters theta'' and the
-    rest exit (PHYSICS 1.2 (3), 1.3)."""
+    rest exit (docs/physics.md 1.2 (3), 1.3)."""
     a_x = lambda t: STEADY_A * math.sin(2 * math.pi * 4.0 * t)
     a_y = lambda t: 0.3 * G * math.sin(2 * math.pi * 3.0 * t)
     ref = naive.housner_rocking(0.1, 0.3, a_x=a_x, a_y=a_y, t_end=5.0)

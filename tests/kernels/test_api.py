@@ -3,7 +3,8 @@ and how scenes are packed (records by name, records of samples stored once, pack
 with their paths).
 
 Counts are checked against the kernel's own impact count and against a plastic scene run
-without clamping; the steady-rocking scene (DESIGN 10: 1.5 west at 4 Hz, 10 s) has 79 impacts.
+without clamping; the steady-rocking scene (docs/design.md 10: 1.5 west at 4 Hz, 10 s) has 79
+impacts.
 """
 import numpy as np
 import pytest

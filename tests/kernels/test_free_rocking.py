@@ -1,4 +1,4 @@
-"""Free rocking and its Zeno accumulation (PHYSICS.md anchor A4, section 3.1).
+"""Free rocking and its Zeno accumulation (docs/physics.md anchor A4, section 3.1).
 
 B = 0.1, H = 0.3 unless stated, released at rest from theta0, mu = 10, e_x = e_y = 0: pure
 rocking with Housner's impacts.  The anchors are the printed A4 values; the same numbers are
@@ -70,10 +70,10 @@ def test_impact_times_from_half_alpha():
 def test_zeno_accumulation(B, H, ratio, t_inf):
     """The kernel reaches rest at the accumulation time: t_rest in [t_inf - slack, t_inf + 1e-4].
 
-    The Zeno closure (PHYSICS 3.1) stops the impacts once the next half-cycle would last less
-    than zeno_dt; the half-cycles left then shrink by eta each, so at most
-    zeno_dt/(1 - eta) of the sequence is skipped: slack = 1.5 zeno_dt/(1 - eta) (+1e-6 for the
-    rounding of the anchor).  Status ok, a finite number of steps and impacts.
+    The Zeno closure (docs/physics.md 3.1) stops the impacts once the next half-cycle would last
+    less than zeno_dt; the half-cycles left then shrink by eta each, so at most zeno_dt/(1 - eta)
+    of the sequence is skipped: slack = 1.5 zeno_dt/(1 - eta) (+1e-6 for the rounding of the
+    anchor).  Status ok, a finite number of steps and impacts.
     """
     c = const(B, H)
     zeno_dt = 1e-6

@@ -1,4 +1,4 @@
-"""Numerically hard scenes (PHYSICS.md section 3): chatter near West's threshold, grazing,
+"""Numerically hard scenes (docs/physics.md section 3): chatter near West's threshold, grazing,
 bouncing, friction around b/h in free rocking, the Painleve case, and earthquake records.
 """
 import json
@@ -15,7 +15,7 @@ import naive
 from kernels.api import run_scene
 from scenes import G, const, pulse, scene, sine
 
-RECORDS = Path("/work/shared/records")
+RECORDS = Path(__file__).resolve().parents[2] / "sweep" / "data" / "records"  # bundled
 FAILED = ("budget_exhausted", "non_finite", "painleve")
 
 
@@ -24,7 +24,7 @@ FAILED = ("budget_exhausted", "non_finite", "painleve")
                          ids=["housner", "default_contact"])
 def test_chatter_near_west_threshold(factor, contact):
     """A = 1.01 (B/H) g at 2 Hz for 10 s: the block chatters on its corners every half
-    period (PHYSICS 3.1: a Housner code without Zeno closure spent 498 s CPU here).  The
+    period (docs/physics.md 3.1: a Housner code without Zeno closure spent 498 s CPU here).  The
     kernel must close each chatter to rest, end with status ok, far inside its budgets, in
     well under a second of CPU."""
     sc = scene(horizontal=sine(factor * G / 3, 2.0), t_end=10.0, **contact)
@@ -106,7 +106,7 @@ def test_flat_drop_plastic():
 @pytest.mark.parametrize("e_y", [0.5, 0.8])
 def test_flat_bounce(e_y):
     """Dropped flat from 5 cm with zero horizontal velocity and e_y > 0: a symmetric
-    translation-jump bounce (PHYSICS 2.3): landing speeds v_n = e_y^n v0, flight times
+    translation-jump bounce (docs/physics.md 2.3): landing speeds v_n = e_y^n v0, flight times
     2 v_n/g (ratio e_y, bounce heights ratio e_y^2), accumulation at
     t_inf = t1 + 2 e_y v0/(g (1 - e_y)); no rotation ever, rest by t_inf (+1e-4)."""
     lift = 0.05
@@ -159,11 +159,11 @@ def test_free_rocking_friction_between_impact_bound_and_b_over_h():
     """mu = 0.3: below b/h = 1/3 but above everything pure free rocking needs.
 
     The paper (Fig. 4a) reports sliding after impact whenever mu_s, mu_edge_s < b/h.  With
-    the impact law of PHYSICS 2.1-2.2 a Housner impact sticks for mu_edge >= 3 beta/(4 +
-    beta^2) = 0.2432, and the pivot ratio F/N of free rocking (PHYSICS 1.2 (3)) never exceeds
-    that same value (its limit at theta -> 0 with omega -> 0), so the motion must be the
-    mu = 10 one: Housner rocking with the A4 accumulation time.  (A difference of impact
-    models, not a kernel defect: reported to the lead.)"""
+    the impact law of docs/physics.md 2.1-2.2 a Housner impact sticks for mu_edge >= 3 beta/(4 +
+    beta^2) = 0.2432, and the pivot ratio F/N of free rocking (docs/physics.md 1.2 (3)) never
+    exceeds that same value (its limit at theta -> 0 with omega -> 0), so the motion must be the mu
+    = 10 one: Housner rocking with the A4 accumulation time.  (A difference of impact models, not a
+    kernel defect: reported to the lead.)"""
     c = const(0.1, 0.3)
     r = _free(0.3)
     assert r.mode_time["slide"] == 0.0 and r.mode_time["slide_rotation"] == 0.0
@@ -200,14 +200,14 @@ def test_onset_with_edge_below_mu_required_slides():
     assert r.max_slip == pytest.approx(x_max, rel=1e-8)
 
 
-# --- Painleve (PHYSICS 3.2) ------------------------------------------------------------------
+# --- Painleve (docs/physics.md 3.2) --------------------------------------------------------------
 
 @pytest.mark.parametrize("mu_edge, status", [(2.0, "painleve"), (1.3, "ok")])
 def test_painleve_after_frictionless_impact(mu_edge, status):
     """Free rocking from 0.5 alpha, e_x = -1, e_y = 0: after the first impact the new pivot
     (right corner) slides away from beneath G with V_x+ = -h omega- 6 beta^2/(1 + 4 beta^2) > 0.
     Slide rotation about it has D = 1 + (b^2 - mu_edge_k b h)/i^2, which is <= 0 for
-    mu_edge_k >= (1 + 4 beta^2)/(3 beta) = 1.444 (PHYSICS 3.2): no consistent contact
+    mu_edge_k >= (1 + 4 beta^2)/(3 beta) = 1.444 (docs/physics.md 3.2): no consistent contact
     force and no consistent lift-off either (the free corner would accelerate into the
     floor).  The kernel must stop there with status 'painleve' and finite outputs; with
     mu_edge_k = 1.3 < 4/3 no Painleve case can occur."""
@@ -233,7 +233,7 @@ def test_painleve_after_frictionless_impact(mu_edge, status):
 @pytest.mark.parametrize("theta0", [0.25, 0.3, 0.35])
 def test_started_inside_painleve_region(theta0):
     """Square block (B = H = 1), mu_edge = 1.4, tipped by theta0 about its left corner with
-    that corner slipping left at 1 m/s (away from beneath G): D < 0 from the start (PHYSICS
+    that corner slipping left at 1 m/s (away from beneath G): D < 0 from the start (docs/physics.md
     3.2, mu_P(phi) < 1.4 for tan(phi) in (0.365, 0.685)).  No contact force is consistent;
     whatever the kernel does (an impact without collision, or status painleve) the result
     must not be garbage."""
@@ -367,7 +367,7 @@ def _corner_at_cone_edge(excess):
 def test_a_slip_that_ends_as_it_begins_sticks(excess):
     """The corner stops slipping (V_cx = 0) with its sticking force a hair outside the
     friction cone (+1e-9) or inside it (-1e-9).  Outside, ``select_corner`` lets it slip
-    again, as PHYSICS 1.3 says, after a slip that lasted; after one that ended at the
+    again, as docs/physics.md 1.3 says, after a slip that lasted; after one that ended at the
     instant it began (a graze of the cone, where |F| - mu N is round-off) the corner sticks
     (rotation about the same corner), else slip and stick would hand the body to each other
     at one instant without end.  Inside, it sticks either way."""

@@ -1,4 +1,4 @@
-"""Impact laws (PHYSICS.md section 2, anchor A3 and the flat-landing anchor of 2.3).
+"""Impact laws (docs/physics.md section 2, anchor A3 and the flat-landing anchor of 2.3).
 
 Rocking impacts are produced by whole scenes (free rocking onto the other corner) and compared
 with closed forms: Housner's eta, the no-slip friction bound 3 beta/(4 + beta^2), the slipping
@@ -20,24 +20,25 @@ from scenes import G, const, count, omega_at_impact, rocking_initial, scene
 
 TIGHT = {"rtol": 1e-12, "atol": 1e-14}
 
-# PHYSICS A3: B, H -> Housner's omega+/omega- (printed to 6 digits)
+# docs/physics.md A3: B, H -> Housner's omega+/omega- (printed to 6 digits)
 HOUSNER = [(0.1, 0.3, 0.85), (0.1, 0.2, 0.7), (0.1, 0.4, 0.911765), (0.1, 0.6, 0.959459),
            (0.3, 0.3, 0.25)]
-# PHYSICS A3: edge friction for a no-slip Housner impact
+# docs/physics.md A3: edge friction for a no-slip Housner impact
 MU_NO_SLIP = [(0.1, 0.3, 0.243243), (0.1, 0.2, 0.352941), (0.1, 0.4, 0.184615),
               (0.1, 0.6, 0.124138)]
-# PHYSICS A3: frictionless corner (e_x = -1, e_y = 0)
+# docs/physics.md A3: frictionless corner (e_x = -1, e_y = 0)
 FRICTIONLESS = [(0.1, 0.3, 0.538462), (0.1, 0.2, 0.25), (0.1, 0.4, 0.7)]
 
 
 def _corner(s, theta, b, h):
-    """r_c from G to corner s (PHYSICS 1.1)."""
+    """r_c from G to corner s (docs/physics.md 1.1)."""
     return (s * b * math.cos(theta) + h * math.sin(theta),
             s * b * math.sin(theta) - h * math.cos(theta))
 
 
 def _corner_law(q, s, e_x, e_y, mu_s, mu_k, b, h, i2):
-    """PHYSICS 2.2 steps 1-4 in numpy for e_x in {-1, 0}: post-impact (u, v, omega), slipped.
+    """docs/physics.md 2.2 steps 1-4 in numpy for e_x in {-1, 0}: post-impact (u, v, omega),
+    slipped.
 
     e_x = 0: sticking target W P = (-V_x, -(1 + e_y) V_y); e_x = -1: no tangential impulse.
     """
@@ -91,10 +92,10 @@ def test_impact_friction_bound(B, H, anchor, factor):
     """Edge friction 0.9x / 1.1x of 3 beta/(4 + beta^2): the first impact slips only below.
 
     Released from rest, free rocking needs nearly the same friction just before the impact
-    (F/N -> 3 beta/(4 + beta^2) as omega -> 0 at theta = 0, PHYSICS 1.2 (3)), so at 0.9x the
-    pivot would slip before the impact.  The block is therefore launched with an omega0 for
+    (F/N -> 3 beta/(4 + beta^2) as omega -> 0 at theta = 0, docs/physics.md 1.2 (3)), so at 0.9x
+    the pivot would slip before the impact.  The block is therefore launched with an omega0 for
     which the pre-impact rocking needs at most 0.8x the bound; x_dot = omega0 r_cy makes that
-    initial state pure rocking.  Expected omega+: PHYSICS 2.2 steps 1-4 evaluated here.
+    initial state pure rocking.  Expected omega+: docs/physics.md 2.2 steps 1-4 evaluated here.
     """
     c = const(B, H)
     mu_star = 3 * c.beta / (4 + c.beta ** 2)
@@ -162,7 +163,7 @@ def _random_free_scene(rng, max_b_over_h=2.5, e_x_max=1.0, one_mu=False):
                        theta=rng.choice([0.0, rng.uniform(-0.5, 0.5) * alpha]))
     else:
         initial.update(theta=rng.uniform(-0.8, 0.8) * alpha)
-    mu = rng.uniform(0.1, 1.2, size=4)          # below 4/3: no Painleve case (PHYSICS 3.2)
+    mu = rng.uniform(0.1, 1.2, size=4)          # below 4/3: no Painleve case (docs/physics.md 3.2)
     if one_mu:
         mu[:] = mu[0]
     # max_events caps the cost of the zero-time loops of test_transitions_do_not_stall
@@ -231,7 +232,7 @@ def test_energy_never_gained_free_scenes_many():
 
 def test_bounce_closure_energy():
     """Corner bounces (e_y = 0.5) closing to rotation must not add energy: a plastic impulse
-    at the corner that removes V_y can only take energy out (PHYSICS 2.2 step 6)."""
+    at the corner that removes V_y can only take energy out (docs/physics.md 2.2 step 6)."""
     B, H = 0.2746325529229049, 0.5450412701993881
     sc = scene(B, H, mu_s=0.43080851146683075, mu_k=0.43080851146683075,
                mu_edge_s=0.3606914416593483, mu_edge_k=0.3606914416593483,
@@ -250,7 +251,7 @@ def test_mixed_friction_does_not_stall():
     """Surface mu_k = 0.5 > b/h = 1/3 > edge mu_edge_k = 0.2, sliding start at 1 m/s.
 
     start_slide sends the block into slide rotation about its leading corner (flat sliding
-    needs mu_k <= b/h, PHYSICS 1.2 (2)), but with the edge friction below b/h theta'' at
+    needs mu_k <= b/h, docs/physics.md 1.2 (2)), but with the edge friction below b/h theta'' at
     theta = 0 tips it the other way (h mu_edge_k - b < 0), so the impact event fires at once;
     the impact returns theta = omega = 0 and the same choice again.  Whatever mode the lead
     picks for this inconsistent pair, time must advance and the budget must not be spent
@@ -283,7 +284,8 @@ def _ke(q, i2):
 
 def test_corner_impact_direct_random():
     """Any single-corner impact: no energy gain, P_n >= 0, |P_t| <= max(mu) P_n, and with
-    no slip and no clamp V_n+ = -e_y V_n- (PHYSICS 2.2); e_x in {-1, 0} matches 2.2 exactly."""
+    no slip and no clamp V_n+ = -e_y V_n- (docs/physics.md 2.2); e_x in {-1, 0} matches 2.2
+    exactly."""
     rng = np.random.default_rng(7)
     for n in range(2000):
         B, H = rng.uniform(0.05, 1.0, size=2)
@@ -349,7 +351,7 @@ def test_face_impact_energy_random():
 
 
 def test_face_impact_no_penetration_random():
-    """After an impact at theta = 0 neither corner may move into the floor (PHYSICS 2.2
+    """After an impact at theta = 0 neither corner may move into the floor (docs/physics.md 2.2
     step 5: otherwise the two-contact impact must be solved)."""
     bad = []
     for n, b, h, i2, q, e_x, e_y, mu in _face_cases(2000, 11):
@@ -364,7 +366,7 @@ def test_face_impact_no_penetration_random():
     assert not bad, f"{len(bad)} of 2000 leave a corner moving down; first {bad[0]}"
 
 
-# --- flat landing, PHYSICS 2.3 -------------------------------------------------------------
+# --- flat landing, docs/physics.md 2.3 -----------------------------------------------------------
 
 def _landing(k, lift=1e-6, t_after=0.02, mu=0.6, B=0.1, H=0.3, u=1.0):
     """A block dropped flat so that it lands with (u, v) = (u, -k) m/s at t_land, under the
@@ -397,7 +399,7 @@ def test_flat_landing_anchor(side):
 
 @pytest.mark.parametrize("factor, rocks", [(1.01, True), (0.99, False)])
 def test_flat_landing_separatrix(factor, rocks):
-    """k = |v-|/|u-| above k_sep = 0.575758 rocks, below it slide-rocks (PHYSICS 2.3)."""
+    """k = |v-|/|u-| above k_sep = 0.575758 rocks, below it slide-rocks (docs/physics.md 2.3)."""
     c = const(0.1, 0.3)
     mu, hb = 0.6, 1 / c.beta
     k_sep = (4 + hb ** 2 - 3 * mu * hb) / (mu * (1 + 4 * hb ** 2) - 3 * hb)
@@ -416,7 +418,8 @@ def test_flat_landing_separatrix(factor, rocks):
 
 @pytest.mark.parametrize("k, mu", [(4.0, 0.3), (4.0, 0.6)])
 def test_flat_landing_stops(k, mu):
-    """1/k <= mu and 1/k <= b/h: the rotation-free impulse stops the block (PHYSICS 2.3)."""
+    """1/k <= mu and 1/k <= b/h: the rotation-free impulse stops the block (docs/physics.md
+    2.3)."""
     sc, t_land = _landing(k, mu=mu, t_after=0.5)
     r = run_scene(sc)
     assert r.status == "ok" and len(r.impact_times) == 1
@@ -427,7 +430,7 @@ def test_flat_landing_stops(k, mu):
 
 @pytest.mark.parametrize("B, H, k, mu", [(0.1, 0.3, 1.0, 0.3), (0.6, 0.3, 0.1, 0.5)])
 def test_flat_landing_slides(B, H, k, mu):
-    """mu <= b/h and k < 1/mu: flat slide with u+ = u-(1 - mu k), omega+ = 0 (PHYSICS 2.3),
+    """mu <= b/h and k < 1/mu: flat slide with u+ = u-(1 - mu k), omega+ = 0 (docs/physics.md 2.3),
     then Newmark deceleration mu g to rest after u+/(mu g)."""
     u_plus = 1.0 - mu * k
     sc, t_land = _landing(k, mu=mu, B=B, H=H, t_after=0.5)

@@ -10,7 +10,8 @@ from kernels import codes
 from kernels.api import record_buffer, run_cells, run_scene, scene_row
 from scenes import G, const, pulse, scene, sine
 
-RECORD = np.loadtxt(Path("/work/shared/records/elcentro1940_ns.txt"))[:, 1]
+RECORD = np.loadtxt(Path(__file__).resolve().parents[2] / "sweep" / "data" / "records"
+                    / "elcentro1940_ns.txt")[:, 1]
 
 
 def _scenes():

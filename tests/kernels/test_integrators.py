@@ -1,6 +1,6 @@
 """The fixed-step integrator (RK4, events interpolated in the step) against the adaptive one
-and against ``naive`` where both should agree (DESIGN 3: 'fixed' reproduces the paper's 1 ms
-step)."""
+and against ``naive`` where both should agree (docs/design.md 3: 'fixed' reproduces the paper's 1
+ms step)."""
 import math
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Exact invariances of the model (PHYSICS.md anchor A1).
+"""Exact invariances of the model (docs/physics.md anchor A1).
 
 (a) Mirror: a_x -> -a_x gives x -> -x, theta -> -theta, u -> -u, omega -> -omega, the same y,
 v and impact times, and the opposite overturning direction.  (b) Similarity: lengths x lambda,

@@ -107,7 +107,7 @@ def _cases():
 
 @pytest.mark.parametrize("landing", [LANDING_FACE_FRICTION, LANDING_CORNER])
 def test_landing_never_gains_energy(landing):
-    """No landing gains energy (L6 and PHYSICS 2.2 step 6), and none leaves a corner moving
+    """No landing gains energy (L6 and docs/physics.md 2.2 step 6), and none leaves a corner moving
     into the floor."""
     for body, u, v, e_x, e_y, mu in _cases():
         q, flags = _land(u, v, body, e_x, e_y, mu, 0.75 * mu, float(landing))
@@ -165,7 +165,7 @@ def test_corner_law_tilts_back_without_friction():
 
 
 def v_H(B, H):
-    """Eq. (9): v_H^2 = (2 g / r)(i^2 + r^2)(1 - cos alpha)/cos^2 alpha (PHYSICS A11)."""
+    """Eq. (9): v_H^2 = (2 g / r)(i^2 + r^2)(1 - cos alpha)/cos^2 alpha (docs/physics.md A11)."""
     c = const(B, H)
     return math.sqrt(2 * G / c.r * (c.i2 + c.r ** 2) * (1 - math.cos(c.alpha))
                      / math.cos(c.alpha) ** 2)
@@ -269,7 +269,7 @@ def _thrown(sign, landing, x_dot, x_g, excited):
 def test_mirrored_landing_mirrors_every_result(landing, x_dot, x_g, excited):
     """x_dot, x_G and a_x -> their negatives: theta, omega, x, u and the overturning
     direction change sign, all else is the same, under every law.  A flat landing whose
-    two-contact impulse would pull the trailing corner is taken by the leading one (PHYSICS
+    two-contact impulse would pull the trailing corner is taken by the leading one (docs/physics.md
     2.3), not by the right one whatever the direction.  Bit for bit here; asserted to 1e-12."""
     r = run_scene(_thrown(1.0, landing, x_dot, x_g, excited), history=True)
     m = run_scene(_thrown(-1.0, landing, x_dot, x_g, excited), history=True)

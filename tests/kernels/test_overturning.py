@@ -1,4 +1,4 @@
-"""Overturning (PHYSICS.md 3.4): the exact escape criterion of free rocking and the
+"""Overturning (docs/physics.md 3.4): the exact escape criterion of free rocking and the
 declaration at |theta| >= theta_overturn."""
 import math
 

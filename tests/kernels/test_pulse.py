@@ -1,4 +1,4 @@
-"""Rocking under a rectangular acceleration pulse (PHYSICS.md anchor A8).
+"""Rocking under a rectangular acceleration pulse (docs/physics.md anchor A8).
 
 Linearized escape condition for a block released from rest by a_x = a for t1:
 (a - g alpha) e^{p t1} >= a, i.e. a_min/(g alpha) = 1/(1 - e^{-p t1}).  For a slender block

@@ -1,4 +1,4 @@
-"""Flat sliding, Newmark's rigid-plastic block (PHYSICS.md 1.2 (2) and anchor A6).
+"""Flat sliding, Newmark's rigid-plastic block (docs/physics.md 1.2 (2) and anchor A6).
 
 B = H = 0.3 m (b/h = 1 above every mu used, so the block slides without rocking); max_slip
 is how far the base moved along the floor, here G's travel |x - x0| as well.

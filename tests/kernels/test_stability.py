@@ -1,4 +1,4 @@
-"""Stability on hard cases (PHYSICS.md section 3): impact accumulation near West's threshold,
+"""Stability on hard cases (docs/physics.md section 3): impact accumulation near West's threshold,
 grazing contact and lift-off, stick-slip with friction near b/h, the Painleve region, bouncing
 with e_y near 1, and overturning statistics of chaotic rocking.  Scenes and checks come from
 ``tests/hard_cases.py`` (the report's stability section runs the same ones); every check is
@@ -37,10 +37,10 @@ def _times_add_up(r, t_end):
 def test_zeno_bursts_impact_by_impact(excess):
     """(1 + excess) West at 2 Hz for 5 s, Housner contact: hundreds of impacts in bursts that
     end by the Zeno closure.  Each flight re-integrated by scipy from the kernel's state after
-    the previous impact lands within 1e-7 s of the kernel's impact; omega+ = eta omega- (PHYSICS
-    2.1), so energy is never gained; every closure, and only a closure, follows an impact whose
-    next flight would last less than zeno_dt; a burst has no more impacts than twice the
-    free-rocking count from a half-period flight down to zeno_dt."""
+    the previous impact lands within 1e-7 s of the kernel's impact; omega+ = eta omega-
+    (docs/physics.md 2.1), so energy is never gained; every closure, and only a closure, follows an
+    impact whose next flight would last less than zeno_dt; a burst has no more impacts than twice
+    the free-rocking count from a half-period flight down to zeno_dt."""
     sc = hc.resolved(hc.near_threshold(excess, hc.HOUSNER))
     r = run_scene(sc)
     assert r.status == "ok" and _finite(r)
@@ -115,7 +115,7 @@ def test_stick_slip_near_b_over_h(excess):
     """mu = (b/h)(1 + excess) under 1.2 West at 2 Hz for 10 s: stick, slip, slide-rotation
     chatter.  Every run ends with finite results far inside the budget; with mu <= b/h the
     block only slides (a flat slide cannot start rocking, and from stick the rest table of
-    PHYSICS 1.3 gives slide since mu_s < mu_req and mu_edge_k <= b/h)."""
+    docs/physics.md 1.3 gives slide since mu_s < mu_req and mu_edge_k <= b/h)."""
     r = run_scene(hc.resolved(hc.stick_slip(excess)))
     assert r.status in OK and _finite(r)
     assert r.events < EVENT_CAP
@@ -138,7 +138,7 @@ def test_painleve_region():
         assert _finite(r) and r.t_final <= 20.0, label
         assert r.events < EVENT_CAP, label
         if mu < hc.MU_PAINLEVE:
-            assert r.status != "painleve", label    # PHYSICS 3.2: none below 4/3
+            assert r.status != "painleve", label    # docs/physics.md 3.2: none below 4/3
 
 
 # --- bouncing with e_y near 1 ---------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""Leaving rest (PHYSICS.md 1.3 and anchor A2).
+"""Leaving rest (docs/physics.md 1.3 and anchor A2).
 
 Rocking iff |a_x| > (b/h) g_e, sliding iff |a_x| > mu_s g_e, lift-off iff a_y < -g, and the
 slide-rock window of Shenton's mu_req under a step of a_x.  Each case is run at 0.99x and

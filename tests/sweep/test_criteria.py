@@ -1,4 +1,4 @@
-"""Closed forms of the paper against PHYSICS.md anchors A3, A8 and A11."""
+"""Closed forms of the paper against docs/physics.md anchors A3, A8 and A11."""
 import math
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 
 from sweep.paper import criteria
 
-# PHYSICS.md A11: B, H [m] -> a_o [m/s^2], v_H [m/s], v_o [m/s], d_o [mm], T_c [s]
+# docs/physics.md A11: B, H [m] -> a_o [m/s^2], v_H [m/s], v_o [m/s], d_o [mm], T_c [s]
 A11 = [
     (0.1, 0.3, 3.26888, 0.485554, 0.194222, 11.540, 0.37332),
     (0.2, 0.6, 3.26888, 0.686678, 0.274671, 23.080, 0.52795),
@@ -39,7 +39,7 @@ def test_a11_arrays():
 
 
 def test_default_block_constants():
-    c = criteria.body_constants(0.1, 0.3)  # PHYSICS.md section 4 header
+    c = criteria.body_constants(0.1, 0.3)  # docs/physics.md section 4 header
     assert c.b == 0.05 and c.h == 0.15
     assert round(float(c.alpha), 6) == 0.321751
     assert round(float(c.r), 6) == 0.158114
@@ -73,7 +73,7 @@ def test_kirkpatrick_at_pulse_frequency_p():
 
 
 def test_a11_kirkpatrick_constant():
-    # c = g (b/h)/(p v_H) = 0.98709 for 0.1 x 0.3 (PHYSICS.md A11)
+    # c = g (b/h)/(p v_H) = 0.98709 for 0.1 x 0.3 (docs/physics.md A11)
     c = criteria.body_constants(0.1, 0.3)
     value = criteria.west_acceleration(0.1, 0.3) / (c.p * criteria.single_shock_velocity(0.1, 0.3))
     assert round(float(value), 5) == 0.98709
@@ -145,7 +145,7 @@ def test_point_p_in_normalized_plane():
 @pytest.mark.parametrize("x", [1.0342, 1.5, 2.0226, 4.0])
 def test_eq4_is_the_linearized_escape_condition(x):
     # linearized rocking under a for t_o, then free: the body escapes iff
-    # e^(p t_o) >= x/(x - 1), x = a/(g alpha) (PHYSICS.md A8); Eq. (4) is its cosh form
+    # e^(p t_o) >= x/(x - 1), x = a/(g alpha) (docs/physics.md A8); Eq. (4) is its cosh form
     c = criteria.body_constants(0.1, 0.3)
     t_o = criteria.housner_overturn_time(0.1, 0.3, x * 9.80665 * c.alpha)
     assert float(c.p * t_o) == pytest.approx(math.log(x / (x - 1.0)), rel=1e-12)
@@ -169,7 +169,7 @@ def test_slender_limits_of_eqs_17_19_21():
 
 
 def test_mononobe_matches_rocking_threshold_with_vertical():
-    # PHYSICS.md 6: rocking starts at a_x = (b/h)(g + a_y); with a_y = k_y g upward the
+    # docs/physics.md 6: rocking starts at a_x = (b/h)(g + a_y); with a_y = k_y g upward the
     # combined coefficient K' = k_x/(1 + k_y) equals b/h there, K (a_y = -k_y g) likewise
     b_over_h, k_y = 0.25, 0.3
     _, K_prime = criteria.mononobe_coefficients(b_over_h * (1 + k_y), k_y)
@@ -178,7 +178,7 @@ def test_mononobe_matches_rocking_threshold_with_vertical():
 
 
 def test_limits_scale_with_size():
-    # PHYSICS.md A1 similarity: lengths x lam -> a_o kept, v_o and T_c x sqrt(lam), d_o x lam
+    # docs/physics.md A1 similarity: lengths x lam -> a_o kept, v_o and T_c x sqrt(lam), d_o x lam
     small, big = criteria.ishiyama_limits(0.1, 0.3), criteria.ishiyama_limits(0.4, 1.2)
     assert float(big.a_o) == pytest.approx(float(small.a_o), rel=1e-12)
     assert float(big.v_o) == pytest.approx(2 * float(small.v_o), rel=1e-12)

@@ -49,7 +49,8 @@ def test_lower_limits_from_the_most_demanding_overturned_body():
 
 
 def test_a11_block_and_per_direction_bounds():
-    # PHYSICS.md A11: B x H = 0.1 x 0.3 -> a_o 3.26888, v_o 0.194222, d_o 11.540 mm, T_c 0.37332
+    # docs/physics.md A11: B x H = 0.1 x 0.3 -> a_o 3.26888, v_o 0.194222, d_o 11.540 mm, T_c
+    # 0.37332
     _, bodies = estimate.load_bodies({"bodies": [
         {"B": "10 cm", "H": "30 cm", "overturned": True, "direction": "EW"},
         {"B": "5 cm", "H": "30 cm", "overturned": True, "direction": "NS"}]})

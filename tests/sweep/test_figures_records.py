@@ -1,8 +1,8 @@
 """Figs. 17-21 render from closed forms and small results, with the numbers they must show.
 
-Fig. 17 is checked against PHYSICS.md A11; the criteria lines of Figs. 18-21 against Table 5 of
-the paper and closed forms; the outcomes of a small record study against West's criterion
-(a body whose (B/H) g exceeds the record's peak acceleration cannot rock, PHYSICS.md A2).
+Fig. 17 is checked against docs/physics.md A11; the criteria lines of Figs. 18-21 against Table 5
+of the paper and closed forms; the outcomes of a small record study against West's criterion (a
+body whose (B/H) g exceeds the record's peak acceleration cannot rock, docs/physics.md A2).
 """
 import math
 
@@ -41,7 +41,7 @@ def summary_result():
 # --- Fig. 17 ----------------------------------------------------------------------------------
 
 def test_fig17_curves_pass_through_a11():
-    # B = 10 cm, H = 30 cm (PHYSICS.md A11): 326.888 gal, 19.4222 cm/s, 1.1540 cm, 0.37332 s
+    # B = 10 cm, H = 30 cm (docs/physics.md A11): 326.888 gal, 19.4222 cm/s, 1.1540 cm, 0.37332 s
     H_cm, exact, approx = plot_limits.limit_curves(10, H_max_cm=30, num=2)
     assert H_cm[-1] == pytest.approx(30)
     assert exact["a"][-1] == pytest.approx(326.888, abs=1e-3)

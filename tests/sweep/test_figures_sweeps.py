@@ -2,7 +2,7 @@
 independent values.
 
 The classifier runs on constructed histories whose period ratio and phase are known by
-construction; the normalized coordinates are checked against the closed forms of PHYSICS.md
+construction; the normalized coordinates are checked against the closed forms of docs/physics.md
 A11 (a_o = (B/H) g and v_H of a 10 x 30 cm block) and the sinusoid relations A = V w = D w^2.
 """
 import math
@@ -17,7 +17,7 @@ from sweep.plots import sweeps as plot_sweeps
 
 G = 9.80665
 ALPHA = math.atan(1 / 3)          # slenderness of a block with b/h = 1/3
-A_O, V_H = 3.26888, 0.485554      # PHYSICS.md A11: B x H = 0.1 x 0.3 m
+A_O, V_H = 3.26888, 0.485554      # docs/physics.md A11: B x H = 0.1 x 0.3 m
 DT = 0.002                        # s, sampling of the constructed histories
 F_FLOOR = 2.0                     # Hz, floor frequency of the constructed histories
 

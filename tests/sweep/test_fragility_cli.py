@@ -1,5 +1,5 @@
 """``python -m sweep.fragility`` and ``sweep.probability.fragility`` on small synthetic study
-datasets built here with xarray (the layout of DESIGN.md section 6).
+datasets built here with xarray (the layout of docs/design.md section 6).
 
 Member m of a body with median capacity θ overturns at every level above θ exp(β ε_m),
 ε_m ~ N(0, 1) (members reused at every level, as when a study scales the same motions), so

@@ -1,7 +1,7 @@
 """The landing figure: the class of every cell of a small landing study (``sweep.paper.landing``;
 Fig. 5's body with the face_friction landing, docs/landing.md), the same when the body moves
-left (mirror, PHYSICS A1), the figure (``sweep.plots.landing``) with our panels marked, and the
-panels it marks agreeing with the scene files."""
+left (mirror, docs/physics.md A1), the figure (``sweep.plots.landing``) with our panels marked, and
+the panels it marks agreeing with the scene files."""
 from pathlib import Path
 
 import matplotlib

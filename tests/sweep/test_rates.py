@@ -2,7 +2,7 @@
 
 Independent values: data drawn from y_inf + c T^-k with known parameters and noise (the fit
 must recover y_inf, its interval must cover it at about its nominal rate); the similarity of
-PHYSICS.md A1 (lengths x 4, times x 2: the same trajectory); the octave duration of a log
+docs/physics.md A1 (lengths x 4, times x 2: the same trajectory); the octave duration of a log
 sweep (duration / log2(f_start/f_stop)).
 """
 import numpy as np
@@ -123,7 +123,7 @@ def _sweep_scene(B, H, f_start, duration, solver, hold_amplitude="2 west"):
 
 
 def test_a_body_four_times_larger_is_the_smaller_body_swept_twice_as_fast():
-    """PHYSICS.md A1: lengths x 4, times x 2.  The 20 x 60 cm body swept 6.4 -> 0.2 Hz in
+    """docs/physics.md A1: lengths x 4, times x 2.  The 20 x 60 cm body swept 6.4 -> 0.2 Hz in
     25 s (5 s per octave) is the 5 x 15 cm body swept 12.8 -> 0.4 Hz in 12.5 s.  Exact in the
     model; the solver's absolute settings (max_step, zeno_dt, atol) are scaled or made
     negligible, else they differ by ~1 % (chaotic growth of the integration error)."""
@@ -140,7 +140,7 @@ def test_a_body_four_times_larger_is_the_smaller_body_swept_twice_as_fast():
 
 def test_fixed_1ms_step_overturns_where_the_adaptive_run_does():
     """One cell of steady inverse-phase rocking (Fig. 9 body, 2 (B/H) g, 40 s per octave).
-    PHYSICS.md 3.5: the paper's 1 ms step errs by ~1e-3 rad per impact, good enough for sweep
+    docs/physics.md 3.5: the paper's 1 ms step errs by ~1e-3 rad per impact, good enough for sweep
     maps; over the ~8,000 impacts of this sweep it delays the overturning by 0.65 s, 0.016
     octave: the overturning frequency within 2 %."""
     adaptive = simulate(_sweep_scene(0.05, 0.15, 12.8, 200.0, {}))

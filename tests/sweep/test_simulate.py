@@ -11,7 +11,7 @@ from sweep.runner.simulate import simulate, summary, to_json_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# PHYSICS A4: B x H = 10 x 30 cm released from theta0 = 0.5 alpha, Housner impacts
+# docs/physics.md A4: B x H = 10 x 30 cm released from theta0 = 0.5 alpha, Housner impacts
 A4_FIRST_IMPACTS = (0.19368, 0.47162, 0.68867)
 
 FREE_ROCKING = {"body": {"B": "10 cm", "H": "30 cm"},
@@ -37,7 +37,7 @@ def test_simulate_history_is_a_dataset():
     assert theta0 == pytest.approx(0.5 * math.atan(1 / 3), rel=1e-12)
 
 
-# DESIGN 10's steady rocking: 79 impacts in 10 s
+# docs/design.md 10's steady rocking: 79 impacts in 10 s
 STEADY = {"body": {"B": "10 cm", "H": "30 cm"}, "contact": {"mu": 10, "e_x": 0.0, "e_y": 0.0},
           "excitation": {"horizontal": {"kind": "sine", "amplitude": "1.5 west",
                                         "frequency": 4.0}},

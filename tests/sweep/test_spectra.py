@@ -20,7 +20,7 @@ TAN_ALPHA = (0.100335, 0.255342)  # tan(0.10), tan(0.25)
 
 
 def _uniform_p(B, H):
-    """sqrt(3g/4R), R = half-diagonal (PHYSICS.md 1.1), for a uniform block B x H [m]."""
+    """sqrt(3g/4R), R = half-diagonal (docs/physics.md 1.1), for a uniform block B x H [m]."""
     return np.sqrt(3.0 * G / (4.0 * 0.5 * np.hypot(B, H)))
 
 

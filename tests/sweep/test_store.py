@@ -1,4 +1,4 @@
-"""Part files, merge and the dataset contract of DESIGN.md section 6, variable by variable."""
+"""Part files, merge and the dataset contract of docs/design.md section 6, variable by variable."""
 import json
 
 import numpy as np
@@ -12,7 +12,7 @@ from sweep.runner.cell_checks import load_study
 from sweep.runner import grid, store
 from sweep.runner.cells import run_chunk
 
-# DESIGN.md section 6: variable -> (dtype, units, extra dims)
+# docs/design.md section 6: variable -> (dtype, units, extra dims)
 CONTRACT = {
     "outcome": ("int8", "1", ()),
     "overturned": ("int8", "1", ()),
