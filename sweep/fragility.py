@@ -7,8 +7,10 @@ the lognormal fragility of overturning with the intervals of its median θ and d
 (``sweep.probability.fragility``; docs/fragility.md).  The fragility dataset is written
 beside RESULT as ``<stem>_fragility_<im>.nc`` (``--dataset`` elsewhere); ``-o`` draws curves
 or, with ``--kind map``, the two-parameter fragility over (PGA, PGV); ``--json`` prints every
-group, otherwise one line per group.
+group, otherwise one line per group, and for a body with G off the middle one more: how many
+members fell to each side (docs/bodies.md).
 """
+import math
 import sys
 from pathlib import Path
 
@@ -17,9 +19,9 @@ from .io.exits import EXIT_BAD_INPUT, EXIT_OK
 from .io.files import output_problems
 from .io.problems import FileProblems
 from .probability.fit import DEFAULT_REPLICATES, FIT_REASONS, FIT_STATUS_NAMES, INTERVALS
-from .probability.fragility import (DEFAULT_BINS, INTENSITY_MEASURES, FragilityError,
-                                    counted, default_levels, describe_group, group_coords,
-                                    group_indices, output_path)
+from .probability.fragility import (DEFAULT_BINS, EVENTS, INTENSITY_MEASURES, SIDE_ANGLES,
+                                    FragilityError, asymmetric, counted, default_levels,
+                                    describe_group, group_coords, group_indices, output_path)
 from .probability.intervals import METHODS
 
 NO_LEVELS = "none"  # --levels none: a cloud of cells, binned in ln IM
@@ -40,11 +42,15 @@ def _parser():
                         help="ensemble dimension whose cells are the members (seed, record); "
                              "repeat for several")
     parser.add_argument("--im", required=True, choices=sorted(INTENSITY_MEASURES),
-                        help="intensity measure of the fragility")
+                        help="intensity measure of the fragility: of the motion applied to "
+                             "the body (pga, pgv; on a building's floor, the floor's), or "
+                             "ground_pga, ground_pgv: of the ground under a floor (the axis "
+                             "that scales it, the IM of a site's hazard)")
     parser.add_argument("--levels", metavar="DIM",
                         help="dimension along which the members are scaled (default: pga, "
-                             f"pgv, scale or amplitude if present); '{NO_LEVELS}': each cell "
-                             "at its own IM, probabilities in bins of ln IM")
+                             "pgv, scale or amplitude if present, else the axis that scales "
+                             f"a floor's ground); '{NO_LEVELS}': each cell at its own IM, "
+                             "probabilities in bins of ln IM")
     parser.add_argument("--bins", type=positive_int, default=DEFAULT_BINS,
                         help=f"bins in ln IM without levels (default {DEFAULT_BINS})")
     parser.add_argument("--confidence", type=_confidence, default=0.95,
@@ -139,7 +145,7 @@ def _draw(frag, ds, args, levels):
 def summary(frag, dataset_path=None, figure=None):
     """The fragility dataset as a JSON-ready dict: settings, then one entry per group."""
     level_dim = next(d for d in frag["p_overturned"].dims if d not in frag["theta"].dims)
-    events = [e for e in ("overturned", "rocked", "slid") if f"p_{e}" in frag]
+    events = [e for e in EVENTS if f"p_{e}" in frag]
     groups = []
     for index in group_indices(frag):
         group = frag.isel(index)
@@ -153,6 +159,7 @@ def summary(frag, dataset_path=None, figure=None):
             entry["levels"] = frag[level_dim].values
         entry.update(im_median=group["im_median"].values, n=group["n_members"].values,
                      n_failed=group["n_failed"].values)
+        entry.update({name: float(group[name]) for name in SIDE_ANGLES if name in frag})
         for event in events:
             entry[event] = {"k": group[f"k_{event}"].values, "p": group[f"p_{event}"].values,
                             "lower": group[f"p_{event}_lower"].values,
@@ -211,7 +218,27 @@ def format_table(frag):
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines += ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip()
               for row in rows]
-    return "\n".join(lines)
+    return "\n".join(lines + _side_lines(frag, units))
+
+
+def _side_lines(frag, units):
+    """For each body with G off the middle, a line: how many of the members that overturned
+    fell to the left (−x, about corner 1) and to the right, at each IM where any did."""
+    lines = []
+    for index in group_indices(frag):
+        group = frag.isel(index)
+        if not asymmetric(group) or "k_overturned_left" not in frag:
+            continue
+        k = group["k_overturned"].values
+        pairs = [f"{_number(x)}: {int(left)}/{int(right)}" for x, left, right, total in zip(
+            group["im_median"], group["k_overturned_left"].values,
+            group["k_overturned_right"].values, k) if total > 0]
+        angles = [math.degrees(float(group[name])) for name in SIDE_ANGLES]
+        lines.append(f"{describe_group(group_coords(frag, index))}: G off the middle "
+                     f"(alpha_1 {angles[0]:.3g} deg, alpha_2 {angles[1]:.3g} deg); overturned "
+                     f"to the left (-x) / right (+x) at {frag.attrs['intensity_measure']}"
+                     f"{units}: " + (", ".join(pairs) or "none overturned"))
+    return lines
 
 
 def _number(da):

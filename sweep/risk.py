@@ -10,10 +10,12 @@ fragility::
 
 Writes the results as a CF netCDF dataset (``--dataset``, default ``results/<name>/risk.nc``
 beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
-(``--nrml``, default ``fragility.xml`` beside the dataset), ``-o`` a figure (the risk map with
-``--map`` for a grid of bodies), ``--csv`` a table per body; ``--json`` prints the report.
-With ``--hazard`` the dataset is written only where ``--dataset`` says.  A bad input gets one
-line per problem and exit status 2.  Under ``mpiexec -n N`` the ranks share the stripes'
+(``--nrml``, default ``fragility.xml`` beside the dataset; a known fragility where ``--nrml``
+says), ``-o`` a figure (the risk map with ``--map`` for a grid of bodies), ``--csv`` a table
+per body; ``--json`` prints the report.  With ``--hazard`` the dataset is written only where
+``--dataset`` says.  ``results/<name>`` is one risk file's (``risk_file.txt`` names it):
+another of the same name is refused unless ``--force``.  A bad input gets one line per
+problem and exit status 2.  Under ``mpiexec -n N`` the ranks share the stripes'
 simulations (each stripe study runs on all of them) and rank 0 reports and writes.
 """
 import sys
@@ -28,6 +30,8 @@ from .io.problems import FileProblems, Problem
 _positive = checked_type(float, lambda v: v > 0, "a positive number")
 _beta = checked_type(float, lambda v: v >= 0, "a non-negative number")
 FORMATS = ("openquake", "usgs", "columns")
+CLAIM = "risk_file.txt"  # in results/<name>: the risk file whose results these are
+_HEAD_BYTES = 4096  # read to find the format of --hazard
 
 
 def _parser():
@@ -40,13 +44,18 @@ def _parser():
                         help="a hazard curve file instead of a risk file (needs --median, "
                              "--beta)")
     parser.add_argument("--format", choices=FORMATS,
-                        help="of --hazard (default: usgs for .json, openquake for a .csv "
-                             "whose first line is a comment, else columns)")
-    parser.add_argument("--im", help="intensity measure of --hazard: pga, pgv, sa(T)")
-    parser.add_argument("--units", help="units of the IM column of a two-column --hazard")
+                        help="of --hazard (default: usgs for .json, openquake for a file "
+                             "whose first line is a comment with investigation_time or whose "
+                             "header starts lon,lat, else columns)")
+    parser.add_argument("--im", help="intensity measure of --hazard: pga, pgv, sa(T) "
+                                      "(default: the file's; must agree with it)")
+    parser.add_argument("--units", help="units of the IM column of a two-column --hazard "
+                                         "(default: the file's, '# units: g' or a header "
+                                         "such as pga_g; must agree with it)")
     parser.add_argument("--poe", type=_positive, metavar="T",
                         help="the second column of --hazard is a probability of exceedance "
-                             "in T years (default: annual rates)")
+                             "in T years (default: what its header says, poe_50yr or "
+                             "annual_rate, else annual rates; must agree with it)")
     parser.add_argument("--median", help="median of a known lognormal fragility, with units "
                                           "(0.4g, 3.9 m/s^2, 30 cm/s)")
     parser.add_argument("--beta", type=_beta, help="its dispersion")
@@ -63,7 +72,10 @@ def _parser():
     parser.add_argument("--map", help="risk map figure over the grid of bodies")
     parser.add_argument("--csv", help="table: one row per body")
     parser.add_argument("--dataset", help="netCDF dataset of the results")
-    parser.add_argument("--nrml", help="OpenQuake fragility model (NRML 0.5) of the fit")
+    parser.add_argument("--nrml", help="OpenQuake fragility model (NRML 0.5) of the fit, or "
+                                       "of the known fragility")
+    parser.add_argument("--force", action="store_true",
+                        help="replace the results of another risk file of the same name")
     return parser
 
 
@@ -123,52 +135,57 @@ def _given_fragility(args, im, source=None):
 
 
 def _hazard_format(path, given):
+    """``--format``, or the format found from the file: usgs for a .json, openquake for a
+    file whose first line is OpenQuake's comment (``investigation_time``) or whose header
+    starts ``lon,lat``, else columns; FileProblems for a file that cannot be opened."""
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(_HEAD_BYTES)
+    except OSError as err:
+        raise FileProblems([Problem("--hazard", str(path), f"cannot read: {err.strerror}")]) \
+            from None
     if given:
         return given
     if path.suffix.lower() == ".json":
         return "usgs"
-    try:
-        first = path.open().readline()
-    except OSError:
-        return "columns"
-    return "openquake" if first.startswith("#") and "investigation_time" in first \
-        else "columns"
+    lines = head.decode("utf-8", "replace").splitlines()[:2]
+    if lines and lines[0].startswith("#") and "investigation_time" in lines[0]:
+        return "openquake"
+    return "openquake" if any(line.replace(" ", "").lower().startswith("lon,lat")
+                              for line in lines) else "columns"
 
 
 def _curve_only(args):
     """The :class:`RiskOutcome` of ``--hazard`` with a known fragility, or problems."""
     from .io.imt import normalize_im
     from .probability import hazard_curve as hc
+    from .probability import hazard_files as hf
     from .probability import risk_report
 
     problems = [] if args.fragility_model is not None else [
         Problem(opt, None, "required with --hazard (or --fragility-model)")
         for opt, value in (("--median", args.median), ("--beta", args.beta)) if value is None]
     path = Path(args.hazard)
-    fmt = _hazard_format(path, args.format)
     im = None
     if args.im is not None:
         try:
             im = normalize_im(args.im)
         except ValueError as err:
             problems.append(Problem("--im", args.im, str(err)))
-    elif fmt == "columns":
-        problems.append(Problem("--im", None, "required with a two-column --hazard"))
-    if fmt == "columns" and args.units is None:
-        problems.append(Problem("--units", None, "required with a two-column --hazard"))
     if problems:
         raise FileProblems(problems)
+    fmt = _hazard_format(path, args.format)
+    if fmt != "columns" and args.poe is not None:
+        raise FileProblems([Problem("--poe", args.poe, f"read from the {fmt} file itself")])
     try:
-        if fmt == "openquake":
-            curve = hc.read_openquake_csv(path)
-        elif fmt == "usgs":
-            curve = hc.read_usgs_json(path, im)
+        if fmt == "columns":
+            curve = hf.read_columns(path, im, args.units, investigation_time=args.poe)
         else:
-            curve = hc.read_columns(path, im, args.units, "poe" if args.poe else "annual_rate",
-                                    args.poe)
+            curve = hf.read_openquake_csv(path, im=im) if fmt == "openquake" else \
+                hf.read_usgs_json(path, im)
+            hf.check_given_units(curve, args.units, path)
     except hc.HazardFileError as err:
-        raise FileProblems([Problem("--hazard", str(path),
-                                    str(err).removeprefix(f"{path}: "))]) from None
+        raise FileProblems([_hazard_problem(err, path, args)]) from None
     except OSError as err:
         raise FileProblems([Problem("--hazard", str(path), f"cannot read: {err.strerror}")]) \
             from None
@@ -176,6 +193,19 @@ def _curve_only(args):
         raise FileProblems([Problem("--im", args.im, f"the curve is of {curve.im}")])
     median, beta = _given_fragility(args, curve.im)
     return risk_report.known(curve, median, beta, args.years or 50.0, name=path.stem)
+
+
+def _hazard_problem(err, path, args):
+    """The :class:`Problem` of a ``HazardFileError``: at the option it is about (``--im``,
+    ``--units``, ``--poe``), else at ``--hazard``."""
+    from .io.problems import MISSING
+
+    option, value = {"im": ("--im", args.im), "units": ("--units", args.units),
+                     "kind": ("--poe", args.poe),
+                     "investigation_time": ("--poe", args.poe)}.get(err.key,
+                                                                    ("--hazard", str(path)))
+    return Problem(option, MISSING if value is None else value,
+                   str(err).removeprefix(f"{path}: "))
 
 
 def _from_file(args):
@@ -186,7 +216,8 @@ def _from_file(args):
 
     spec = load_risk(args.risk, hazard=checked_hazard)
     folder = spec.folder / "results" / spec.name
-    given = _given_fragility(args, spec.checked.im or "pga", args.risk)
+    _claim(folder, args.risk, args.force)
+    given = _given_fragility(args, spec.curve.im, args.risk)
     median, beta = (None, None) if given is None else given
     outcome = risk_report.compute(spec, folder, say=_say, median=median, beta=beta)
     if args.years is not None:
@@ -195,6 +226,27 @@ def _from_file(args):
     if spec.checked.output and not dataset.is_absolute():
         dataset = spec.folder / dataset
     return outcome, dataset
+
+
+def _claim(folder, source, force):
+    """Make ``folder`` (``results/<name>``) hold the results of the risk file ``source``,
+    as its file ``CLAIM`` says; FileProblems when another risk file's results are there (the
+    same ``name``), unless ``force``."""
+    from .io.files import replacing
+    from .runner.mpi import first_process
+
+    marker, mine = folder / CLAIM, str(Path(source).resolve())
+    try:
+        holder = marker.read_text().strip()
+    except OSError:  # none yet
+        holder = None
+    if holder not in (None, mine) and not force:
+        raise FileProblems([Problem("name", folder.name, f"results/{folder.name} holds the "
+                                    f"results of {holder}: rename this file's name, or use "
+                                    "--force to replace them")], source)
+    if holder != mine and first_process():
+        with replacing(marker) as tmp:
+            Path(tmp).write_text(mine + "\n")
 
 
 def _with_years(outcome, years):
@@ -232,15 +284,23 @@ def print_report(outcome):
     the disaggregation of λ_O by IM segment (segments with ≥ 1 % of it)."""
     import numpy as np
 
+    from .probability.risk_report import asymmetric
+
     curve = outcome.curve
     factor, unit = display_scale(curve.units)
     print(f"hazard: {curve.source}")
+    if outcome.placement and outcome.placement != "the ground under the body":
+        print(f"the stripes' motions: {outcome.placement}")
     for index in np.ndindex(*outcome.shape):
         r, f = outcome.risks[index], outcome.fits[index]
-        print(f"{outcome.labels()[index]}:")
-        if f is not None and not f.identifiable and r is not None:
-            print(f"  fragility: a step at {r.median / factor:.3g} {unit}, in the gap where "
-                  f"the stripes separate ({f.reason}); the interval: a step anywhere in it")
+        print(f"{outcome.names()[index]}:")
+        if f is not None and not f.identifiable and r is not None and r.bound is None:
+            print(f"  fragility: a step at {r.median / factor:.3g} {unit}, where the stripes "
+                  f"separate ({f.reason}); the interval: a step anywhere between the highest "
+                  "stripe where none overturned and the lowest where all did (the curve's "
+                  "ends where there is no such stripe)")
+        elif f is not None and not f.identifiable:
+            print(f"  fragility: not identifiable ({f.reason})")
         elif f is not None:
             lo, hi = f.theta_interval
             print(f"  fragility: median {f.theta / factor:.3g} {unit} [{lo / factor:.3g}, "
@@ -249,41 +309,80 @@ def print_report(outcome):
         elif r is not None:
             print(f"  fragility (given): median {r.median / factor:.3g} {unit}, "
                   f"beta {r.beta:.3g}")
+        if asymmetric(outcome, index):
+            print(_side_line(outcome, index, factor, unit))
         if r is None:
             print("  risk: not computed (the fragility is not identifiable)")
             continue
-        lo, hi = r.rate_interval
-        interval = f" [{lo:.3g}, {hi:.3g}]" if np.isfinite(lo) else ""
-        plo, phi = r.probability_interval
-        pint = f" [{_pct(plo)}, {_pct(phi)}]" if np.isfinite(plo) else ""
-        print(f"  annual rate of overturning {r.annual_rate:.3g}/yr{interval}; return period "
-              f"{r.return_period:.3g} yr")
-        print(f"  probability in {r.years:g} years: {_pct(r.probability)}{pint}"
-              + ("" if outcome.target is None else
-                 f"; target {_pct(outcome.target)}: "
-                 + ("met" if r.probability <= outcome.target else "NOT met")))
-        print(f"  share from above the curve's last level {_pct(r.share_above)} (included), "
-              f"below its first level {_pct(r.share_below)} (estimate, not included)")
-        print(f"  {curve.im} segment [{unit}]     share of the rate")
+        for line in _risk_lines(r, outcome.target):
+            print(f"  {line}")
+        print(f"  {curve.im} segment [{unit}]     share of the {'bound' if r.bound else 'rate'}")
         for lower, upper, share in zip(r.lower, r.upper, r.shares):
             if share >= 0.01:
                 top = "..." if not np.isfinite(upper) else f"{upper / factor:.3g}"
                 print(f"  {lower / factor:8.3g} - {top:<8} {100 * share:6.1f} %  "
                       + "#" * int(round(40 * share)))
     if outcome.target is not None and outcome.shape:
-        meeting = [outcome.labels()[i] for i in np.ndindex(*outcome.shape)
+        meeting = [outcome.names()[i] for i in np.ndindex(*outcome.shape)
                    if outcome.risks[i] is not None
                    and outcome.risks[i].probability <= outcome.target]
-        sure = {outcome.labels()[i] for i in np.ndindex(*outcome.shape)
+        sure = {outcome.names()[i] for i in np.ndindex(*outcome.shape)
                 if outcome.risks[i] is not None
                 and outcome.risks[i].probability_interval[1] <= outcome.target}
         print(f"bodies meeting the target ({_pct(outcome.target)} in {outcome.years:g} years): "
               f"{len(meeting)} of {outcome.risks.size} ({len(sure)} also with the upper "
-              f"bound of the interval, marked *)")
+              f"bound of the interval or the bound of a body never overturned, marked *)")
         for label in meeting:
             print(f"  {label}{' *' if label in sure else ''}")
     for text in outcome.warnings:
         print(f"caution: {text}")
+
+
+def _side_line(outcome, index, factor, unit):
+    """The overturnings of a body with G off the middle to the left (−x, about corner 1)
+    and to the right at each stripe (docs/bodies.md)."""
+    import math
+
+    sides = outcome.sides
+    along = (slice(None),) + index
+    counts = ", ".join(f"{s.level / factor:.3g}: {left}/{right}" for s, left, right in zip(
+        outcome.stripes, sides.left[along].tolist(), sides.right[along].tolist()))
+    return (f"  G off the middle (alpha_1 {math.degrees(sides.alpha_1[index]):.3g} deg, "
+            f"alpha_2 {math.degrees(sides.alpha_2[index]):.3g} deg): overturned to the left "
+            f"(-x) / right (+x) at each stripe [{unit}]: {counts}")
+
+
+def _risk_lines(r, target):
+    """The lines of a body's risk: λ_O and P with their intervals (or, for a body never
+    overturned, their bounds), the target, the shares beyond the curve's ends."""
+    import numpy as np
+
+    from .probability.hazard_curve import poe_from_rate
+
+    verdict = "" if target is None else \
+        f"; target {_pct(target)}: " + ("met" if r.probability <= target else "NOT met")
+    if r.bound is not None:
+        return [f"annual rate of overturning ≤ {r.annual_rate:.3g}/yr; return period ≥ "
+                f"{r.return_period:.3g} yr ({r.bound})",
+                f"probability in {r.years:g} years ≤ {_pct(r.probability)}{verdict}"
+                + (" on the bound" if verdict else ""),
+                f"share of the bound from above the curve's last level "
+                f"{_pct(r.share_above)}"]
+    lo, hi = r.rate_interval
+    interval = f" [{lo:.3g}, {hi:.3g}]" if np.isfinite(lo) else ""
+    plo, phi = r.probability_interval
+    pint = f" [{_pct(plo)}, {_pct(phi)}]" if np.isfinite(plo) else ""
+    rate_most, p_most = "", ""
+    if r.open_above:  # the part above the curve: between F(x_n) λ(x_n) and λ(x_n)
+        rate_most = (f" (at least: up to {r.rate_at_most:.3g}/yr if all shaking above the "
+                     "curve overturned it; see the caution)")
+        p_most = f" (at least: up to {_pct(poe_from_rate(r.rate_at_most, r.years))})"
+    return [f"annual rate of overturning {r.annual_rate:.3g}/yr{interval}{rate_most}; return "
+            f"period {r.return_period:.3g} yr",
+            f"probability in {r.years:g} years: {_pct(r.probability)}{pint}{p_most}{verdict}",
+            f"share from above the curve's last level {_pct(r.share_above)} (included, with "
+            f"the fragility there), below its first level {_pct(r.share_below)} (estimate, "
+            "not included)"]
 
 
 def _csv_rows(outcome):
@@ -303,7 +402,8 @@ def _csv_rows(outcome):
                      "years": record["years"], "probability": record["probability"],
                      "probability_lower": (interval.get("probability") or [None])[0],
                      "probability_upper": (interval.get("probability") or [None, None])[1],
-                     "return_period": record["return_period"]})
+                     "return_period": record["return_period"],
+                     "bound": record.get("bound") or ""})
     return rows
 
 
@@ -314,10 +414,12 @@ def _write_nrml(outcome, path):
 
     functions = []
     for index in np.ndindex(*outcome.shape):
-        f = outcome.fits[index]
+        f, r = outcome.fits[index], outcome.risks[index]
+        label = outcome.labels()[index].replace(" = ", "=").replace(", ", "_").replace(" ", "")
         if f is not None and f.identifiable:
-            label = outcome.labels()[index].replace(" = ", "=").replace(", ", "_")
-            functions.append((label.replace(" ", ""), f.theta, f.beta))
+            functions.append((label, f.theta, f.beta))
+        elif f is None and r is not None:  # a known fragility
+            functions.append((label, r.median, r.beta))
     if not functions:
         return None
     return write_fragility_model(path, functions, outcome.curve.im,
@@ -379,12 +481,14 @@ def main(argv=None):
     if dataset is not None:
         write_dataset(to_dataset(outcome, history), dataset)
         written.append(str(dataset))
-        nrml = Path(args.nrml) if args.nrml else dataset.with_name(
-            dataset.stem.replace("risk", "fragility") + ".xml")
-        if outcome.stripes is not None and _write_nrml(outcome, nrml):
-            written.append(str(nrml))
-    elif args.nrml and outcome.stripes is not None and _write_nrml(outcome, Path(args.nrml)):
-        written.append(args.nrml)
+    nrml = Path(args.nrml) if args.nrml else None
+    if nrml is None and dataset is not None and outcome.stripes is not None:
+        nrml = dataset.with_name(dataset.stem.replace("risk", "fragility") + ".xml")
+    if nrml is not None and _write_nrml(outcome, nrml):
+        written.append(str(nrml))
+    elif args.nrml:
+        print("sweep.risk: --nrml not written: no body has a lognormal fragility",
+              file=sys.stderr)
     if args.csv:
         write_csv(args.csv, _csv_rows(outcome))
         written.append(args.csv)

@@ -46,7 +46,7 @@ MAX_FRICTION = 2.0
 
 _SIZES = {"B": "a body {:g} m wide", "H": "a body {:g} m tall",
           "i_g": "a radius of gyration of {:g} m", "R_1": "G {:g} m from its left corner",
-          "R_2": "G {:g} m from its right corner"}
+          "R_2": "G {:g} m from its right corner", "h": "G {:g} m above its base"}
 _FRICTION = ("mu", "mu_s", "mu_k", "mu_edge_s", "mu_edge_k")
 _SCALING = ("scale_with", "scale", "pga", "pgv", "sa")
 

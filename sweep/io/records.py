@@ -208,9 +208,11 @@ def describe(rec):
 
 def floor_provenance(excitation):
     """``{component: describe(record)}`` of the components of a resolved ``excitation``
-    (``scene_schema.resolve_scene``) that are records read from a file or bundled."""
+    (``scene_schema.resolve_scene``) that are records read from a file or bundled, or
+    building's floors over such a record (said as the record on the ground is)."""
     found = {}
     for component, ground in excitation.items():
+        ground = ground.get("ground", ground)  # a floor: the record under its building
         said = describe(ground["source"]) if ground["kind"] == "record" else None
         if said is not None:
             found[component] = said

@@ -36,8 +36,9 @@ from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
 
 from .imt import im_dimension, normalize_im
 from .loader import load_file
-from .problems import MISSING, FieldError, dotted_path, fields_checked
-from .scene_schema import Real, Seed, StrictModel, quantity
+from .problems import MISSING, FieldError, FileProblems, dotted_path, fields_checked
+from .records import NAMES as RECORD_NAMES
+from .scene_schema import KINDS, Real, Seed, StrictModel, load_scene, quantity
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
 MECHANISMS = ("SS", "NS", "RS")
@@ -46,8 +47,10 @@ GRID_AXES = ("B", "H", "b_over_h", "mu")  # body axes of a risk map
 SOURCE_KINDS = ("point", "area")
 MAX_LEVELS = 200
 MAX_MOTIONS = 10_000
+STRIPES_GIVE = "the stripes give the ground motion"  # why a scene's own motion is refused
 
 Positive = quantity("length", gt=0)
+MAX_CRUSTAL_DEPTH = 80e3  # m: below the thickest crust, about 75 km (Mooney et al. 1998)
 
 
 def _absolute(q):
@@ -117,12 +120,16 @@ def _im(value):
 
 
 class Recurrence(StrictModel):
-    """Truncated Gutenberg-Richter: ``rate`` of M >= ``m_min`` (or ``a``), ``b``, ``m_max``;
-    or ``characteristic: true``: ``rate`` of M = ``m_min``."""
+    """Truncated Gutenberg-Richter: ``rate`` of M >= ``m_min`` (or OpenQuake's ``a``), ``b``,
+    ``m_max``; or ``characteristic: true``: ``rate`` of M = ``m_min``."""
 
     rate: Optional[Annotated[Real, Field(gt=0)]] = Field(
         None, description="annual rate of earthquakes of M >= m_min [1/yr]")
-    a: Optional[Real] = Field(None, description="Gutenberg-Richter a-value (instead of rate)")
+    a: Optional[Real] = Field(None, description="a-value, instead of rate, as OpenQuake's "
+                                                "truncatedGutenbergRichterMFD aValue: the "
+                                                "rate of m_min <= M <= m_max is "
+                                                "10^(a - b m_min) - 10^(a - b m_max) "
+                                                "(characteristic: 10^(a - b m_min))")
     b: Annotated[Real, Field(gt=0, le=3)] = Field(1.0, description="Gutenberg-Richter b-value")
     m_min: Annotated[Real, Field(ge=4.0, le=8.5)] = Field(description="smallest magnitude")
     m_max: Optional[Annotated[Real, Field(ge=4.0, le=8.5)]] = Field(
@@ -148,10 +155,20 @@ class Recurrence(StrictModel):
         return self
 
     def si(self):
-        rate = self.rate if self.rate is not None else 10.0 ** (self.a - self.b * self.m_min)
-        return {"rate": float(rate), "m_min": float(self.m_min),
+        """The law of the magnitudes (the rate is ``rate``, or that of ``a``)."""
+        return {"m_min": float(self.m_min),
                 "m_max": None if self.m_max is None else float(self.m_max),
                 "b": float(self.b), "characteristic": self.characteristic}
+
+
+def _crustal(q):
+    if q.to_si() > MAX_CRUSTAL_DEPTH:
+        raise ValueError(f"deeper than any crust ({MAX_CRUSTAL_DEPTH / 1e3:g} km): not a "
+                         "crustal earthquake, which the ground-motion models are of")
+    return q
+
+
+Depth = Annotated[Positive, AfterValidator(_crustal)]
 
 
 class PointSource(StrictModel):
@@ -159,22 +176,27 @@ class PointSource(StrictModel):
 
     kind: Literal["point"] = Field(description="the kind of source")
     distance: quantity("length", ge=0) = Field(description="epicentral distance to the site")
-    depth: Positive = Field(description="depth of the hypocentre")
+    depth: Depth = Field(description="depth of the hypocentre (at most 80 km; warned "
+                                     "beyond 20 km)")
     mechanism: Literal[MECHANISMS] = Field("SS", description="strike-slip, normal or reverse")
     recurrence: Recurrence = Field(description="how often it breaks, at which magnitudes")
 
 
 class AreaSource(StrictModel):
-    """A rectangle ``east: [x0, x1]``, ``north: [y0, y1]`` around the site (the site at 0, 0),
-    cut into cells of side ``spacing``."""
+    """A rectangle ``east: [x0, x1]``, ``north: [y0, y1]`` from the site (the site at 0, 0),
+    epicentres uniform in it: integrated over distance to convergence, in steps no longer than
+    ``spacing`` if given."""
 
     kind: Literal["area"] = Field(description="the kind of source")
     east: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)] = Field(
         description="[west edge, east edge] from the site")
     north: Annotated[list[quantity("length")], Field(min_length=2, max_length=2)] = Field(
         description="[south edge, north edge] from the site")
-    spacing: Positive = Field(description="side of the cells")
-    depth: Positive = Field(description="depth of the hypocentres")
+    spacing: Optional[Positive] = Field(
+        None, description="longest step of the integration over distance (default: none; "
+                          "the steps are chosen to converge)")
+    depth: Depth = Field(description="depth of the hypocentres (at most 80 km; warned beyond "
+                                     "20 km)")
     mechanism: Literal[MECHANISMS] = Field("SS", description="strike-slip, normal or reverse")
     recurrence: Recurrence = Field(description="of the whole area")
 
@@ -205,6 +227,10 @@ class SourceHazard(StrictModel):
         description="the earthquake sources")
     distance_bins: Optional[Annotated[list[quantity("length", ge=0)], Field(min_length=2)]] \
         = Field(None, description="Rrup bin edges of the disaggregation")
+    truncation_level: Optional[Annotated[Real, Field(gt=0)]] = Field(
+        None, description="the ground-motion model's epsilon truncated at +- this many "
+                          "sigma, as OpenQuake's truncation_level (default: none, "
+                          "untruncated)")
 
     @field_validator("im")
     @classmethod
@@ -226,14 +252,20 @@ class CurveFile(StrictModel):
     path: StrictStr = Field(description="the file, relative to the risk file's folder")
     format: Literal[FORMATS] = Field(description="OpenQuake CSV, USGS JSON or two columns")
     im: Optional[StrictStr] = Field(None, description="intensity measure: pga, pgv or sa(T) "
-                                                      "(required for two columns)")
-    units: Optional[StrictStr] = Field(None, description="unit of the IM column of a "
-                                                         "two-column file")
-    kind: Literal["annual_rate", "poe"] = Field(
-        "annual_rate", description="second column of a two-column file: annual rates, or "
-                                   "probabilities of exceedance in investigation_time")
+                                                      "(default: the file's; must agree with "
+                                                      "it)")
+    units: Optional[StrictStr] = Field(None, description="unit of the IM levels (default: "
+                                                         "the file's: a two-column file's "
+                                                         "'# units: g' or a header such as "
+                                                         "pga_g, OpenQuake's and the USGS's "
+                                                         "g or cm/s; must agree with it)")
+    kind: Optional[Literal["annual_rate", "poe"]] = Field(
+        None, description="second column of a two-column file: annual rates, or "
+                          "probabilities of exceedance in investigation_time (default: what "
+                          "its header says, else annual_rate; must agree with it)")
     investigation_time: Optional[Annotated[Real, Field(gt=0)]] = Field(
-        None, description="years of the probabilities (kind: poe)")
+        None, description="years of the probabilities (default: the file's, poe_50yr or "
+                          "'# investigation_time: 50'; must agree with it)")
     site: Annotated[StrictInt, Field(ge=0)] = Field(
         0, description="row of an OpenQuake file of several sites")
 
@@ -244,18 +276,15 @@ class CurveFile(StrictModel):
 
     @model_validator(mode="after")
     def _columns(self):
-        errors = []
+        """What only a two-column file takes; what a file states itself is checked when it
+        is read (``risk_inputs.read_curve``)."""
         if self.format == "columns":
-            errors += [(key, MISSING, "required for a two-column file")
-                       for key in ("im", "units") if getattr(self, key) is None]
-            if self.kind == "poe" and self.investigation_time is None:
-                errors.append(("investigation_time", MISSING, "required with kind: poe"))
-        else:
-            errors += [(key, getattr(self, key), f"read from the {self.format} file itself")
-                       for key in ("units", "investigation_time")
-                       if getattr(self, key) is not None]
-            if self.kind != "annual_rate":
-                errors.append(("kind", self.kind, f"read from the {self.format} file itself"))
+            if self.kind == "annual_rate" and self.investigation_time is not None:
+                raise FieldError("investigation_time", self.investigation_time,
+                                 "only with kind: poe")
+            return self
+        errors = [(key, getattr(self, key), f"read from the {self.format} file itself")
+                  for key in ("kind", "investigation_time") if getattr(self, key) is not None]
         if errors:
             raise FieldError.several(errors)
         return self
@@ -335,8 +364,9 @@ class RiskFile(StrictModel):
     title: Optional[StrictStr] = Field(None, description="one line for people")
     site: Optional[StrictStr] = Field(None, description="name of the site")
     hazard: Hazard = Field(description="the site's hazard: a curve file or a source model")
-    scene: Optional[dict] = Field(None, description="the body simulated (a scene without "
-                                                    "excitation)")
+    scene: Optional[dict] = Field(None, description="the body simulated: a scene without "
+                                                    "excitation, or on a building's floor "
+                                                    "(kind floor without ground)")
     stripes: Optional[Stripes] = Field(None, description="the motions that give the "
                                                          "fragility")
     fragility: Optional[Fragility] = Field(None, description="a known lognormal fragility "
@@ -377,7 +407,7 @@ class RiskFile(StrictModel):
                                          tags=SOURCE_KINDS)
         errors += [FieldError(*e) for e in _section_problems(data)]
         if checked is not None:
-            errors += [FieldError(*e) for e in _im_problems(checked)]
+            errors += [FieldError(*e) for e in im_problems(checked)]
         if errors:
             raise FieldError.every(errors)
         context = info.context or {}
@@ -397,13 +427,18 @@ def _section(raw, key):
 
 
 def _section_problems(raw):
-    """``(path, value, message)`` of the choice between stripes and a known fragility, and of
-    what stripes need (a scene; with a curve file, a scenario and vs30), from the raw mapping.
+    """``(path, value, message)`` of the choice between stripes and a known fragility, of
+    what stripes need (a scene; with a curve file, a scenario and vs30) and of the scene
+    (:func:`_scene_problems`), from the raw mapping.
     """
     given = {key: isinstance(raw, dict) and raw.get(key) is not None
              for key in ("stripes", "fragility", "scene")}
     stripes = _section(raw, "stripes")
-    errors = []
+    errors = _scene_problems(raw.get("scene") if isinstance(raw, dict) else None)
+    if _kind(_section(_section(raw, "scene"), "excitation").get("horizontal")) == "floor" and \
+            _mixed_records(stripes.get("records")):
+        errors.append(("stripes.records", stripes["records"], "under a building's floor, give "
+                       "bundled records or files, not both (the ground takes a name or a path)"))
     if not given["stripes"] and not given["fragility"]:
         errors.append(("stripes", MISSING, "required (or a known fragility)"))
     if given["stripes"] and given["fragility"]:
@@ -420,16 +455,68 @@ def _section_problems(raw):
     return errors
 
 
-def _im_problems(checked):
+def _kind(component):
+    """The kind of a raw excitation component: ``none`` for none or an empty entry."""
+    if component is None or component == "none":
+        return "none"
+    return component.get("kind") if isinstance(component, dict) else None
+
+
+def _mixed_records(records):
+    """True when ``records`` (raw) holds both bundled records' names and files."""
+    return isinstance(records, list) and len({isinstance(r, str) and r in RECORD_NAMES
+                                              for r in records}) > 1
+
+
+def _scene_problems(scene):
+    """``(path, value, message)`` of a risk file's raw ``scene``, checked as a scene file is
+    (``scene.body.B``), with stripes or a known fragility.  The stripes give its motion: the
+    horizontal one may only be a building's floor over it (``kind: floor`` without a
+    ``ground``), the vertical one none; another motion is refused, not replaced."""
+    if not isinstance(scene, dict):
+        return []  # none given, or not a mapping: the field's problem
+    errors, checked = [], scene
+    excitation = scene.get("excitation")
+    if isinstance(excitation, dict):
+        kept = dict(excitation)
+        vertical, horizontal = excitation.get("vertical"), excitation.get("horizontal")
+        if _kind(vertical) in KINDS and _kind(vertical) != "none":
+            errors.append(("scene.excitation.vertical.kind", _kind(vertical),
+                           f"not supported in a risk file: {STRIPES_GIVE}, horizontal only"))
+            kept.pop("vertical")
+        if _kind(horizontal) == "floor":
+            if "ground" in horizontal:
+                errors.append(("scene.excitation.horizontal.ground", horizontal["ground"],
+                               f"leave it out: {STRIPES_GIVE} under the building"))
+            kept["horizontal"] = {**horizontal, "ground": "none"}
+        elif _kind(horizontal) in KINDS and _kind(horizontal) != "none":
+            errors.append(("scene.excitation.horizontal.kind", _kind(horizontal),
+                           f"not supported in a risk file: {STRIPES_GIVE} (a building's "
+                           "floor over it: kind floor)"))
+            kept.pop("horizontal")
+        checked = {**scene, "excitation": kept}
+    try:
+        load_scene(checked)
+    except FileProblems as problems:
+        errors += [tuple(p) for p in problems.with_prefix("scene").problems]
+    return errors
+
+
+def _article(word):
+    return "an" if word[0] in "aeiou" else "a"
+
+
+def im_problems(checked, im=None):
     """``(path, value, message)`` of a fragility's median or stripe levels not of the
-    dimension of the hazard's IM."""
-    im = checked.im
-    if im is None:  # read from the curve file
+    dimension of the hazard's IM (``im``, else the file's: none when a curve file names it,
+    checked again once it is read)."""
+    im = im or checked.im
+    if im is None:
         return []
     errors = []
     if checked.fragility is not None and checked.fragility.median.dimension != im_dimension(im):
         errors.append(("fragility.median", str(checked.fragility.median),
-                       f"must be an {im_dimension(im)}, as {im}"))
+                       f"must be {_article(im_dimension(im))} {im_dimension(im)}, as {im}"))
     if checked.stripes is not None:
         levels = checked.stripes.levels
         levels = levels.values if isinstance(levels, LevelList) else [levels.start]

@@ -106,14 +106,14 @@ class StrictModel(BaseModel):
 class Body(StrictModel):
     """Full breadth ``B`` and height ``H``, centre of gravity ``G`` and ``i_g`` radius of
     gyration about G (default uniform); or, as the precarious-rock literature gives a body,
-    ``alpha_1, alpha_2, R_1, R_2`` (and optionally ``H``), converted into B and G
-    (docs/bodies.md)."""
+    ``alpha_1, alpha_2`` with ``R_1, R_2`` or with the height ``h`` of G (and optionally
+    ``H``), converted into B and G (docs/bodies.md)."""
 
     model_config = ConfigDict(json_schema_extra={"if": {"not": {"required": ["alpha_1"]}},
                                                  "then": {"required": ["B", "H"]}})
 
     B: Optional[Length] = Field(None, description="full breadth (b = B/2); required unless "
-                                                  "alpha_1, alpha_2, R_1, R_2 are given")
+                                                  "the rock form (alpha_1, alpha_2) is given")
     H: Optional[Length] = Field(None, description="full height (h = H/2); required unless "
                                                   "the rock form gives G (default 2 y_G)")
     G: Optional[Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]] = Field(
@@ -128,6 +128,8 @@ class Body(StrictModel):
                                                        "the right corner (+x), atan(b2/y_G)")
     R_1: Optional[Length] = Field(None, description="distance from G to the left corner")
     R_2: Optional[Length] = Field(None, description="distance from G to the right corner")
+    h: Optional[Length] = Field(None, description="height of G above the base, with alpha_1 "
+                                                  "and alpha_2 instead of R_1, R_2")
 
     @field_validator("i_g")
     @classmethod
@@ -137,45 +139,71 @@ class Body(StrictModel):
             raise ValueError("too large: its square leaves the float range")
         return i_g
 
+    @property
+    def form(self):
+        """``"rock"`` for a body given by alpha_1, alpha_2 (its shape above the base unknown),
+        else ``"rectangle"`` (B x H)."""
+        return "rock" if self.alpha_1 is not None else "rectangle"
+
     @model_validator(mode="after")
     def _one_form(self):
-        """B and H (and G), or alpha_1, alpha_2, R_1, R_2 turned into B and G: the corners
-        at (-R_1 sin alpha_1, -R_1 cos alpha_1) and (R_2 sin alpha_2, -R_2 cos alpha_2) from G,
-        whose heights must agree (to 1e-9)."""
-        rock = {key: getattr(self, key) for key in ROCK_KEYS}
-        if all(value is None for value in rock.values()):
+        """B and H (and G), or the rock form turned into B and G (:meth:`_corners`)."""
+        if all(getattr(self, key) is None for key in ROCK_KEYS):
             missing = [key for key in ("B", "H") if getattr(self, key) is None]
             if missing:
                 raise FieldError.several([(key, MISSING, "is required (or give alpha_1, "
-                                                         "alpha_2, R_1, R_2)")
+                                                         "alpha_2 and R_1, R_2 or h)")
                                           for key in missing])
             return self
-        missing = [key for key, value in rock.items() if value is None]
-        if missing:
-            raise FieldError(missing[0], MISSING, "the rock form needs all of alpha_1, "
-                                                  "alpha_2, R_1, R_2")
         if self.B is not None or self.G is not None:
             raise FieldError("B" if self.B is not None else "G", MISSING,
-                             "give B and G, or alpha_1, alpha_2, R_1, R_2, not both")
-        a1, a2 = rock["alpha_1"].to_si(), rock["alpha_2"].to_si()
-        if not (0.0 < a1 < math.pi / 2 and 0.0 < a2 < math.pi / 2):
-            raise FieldError("alpha_1" if not 0.0 < a1 < math.pi / 2 else "alpha_2", MISSING,
-                             "must lie between 0 and 90 deg")
-        (b1, h1), (b2, h2) = ((R.to_si() * math.sin(a), R.to_si() * math.cos(a))
-                              for R, a in ((rock["R_1"], a1), (rock["R_2"], a2)))
-        if abs(h1 - h2) > 1e-9 * max(h1, h2):
-            raise FieldError("R_2", str(rock["R_2"]),
-                             f"R_1 cos alpha_1 = {h1:.9g} m and R_2 cos alpha_2 = {h2:.9g} m "
-                             "are both the height of G: they must agree")
-        h = 0.5 * (h1 + h2)
+                             "give B and G, or alpha_1, alpha_2 and R_1, R_2 or h, not both")
+        b1, b2, h = self._corners()
         self.B = Quantity(b1 + b2, "m", "length")   # in metres: not a bare number written
         self.G = [Quantity(0.5 * (b1 - b2), "m", "length"), Quantity(h, "m", "length")]
         if self.H is None:
             self.H = Quantity(2.0 * h, "m", "length")
         return self
 
+    def _corners(self):
+        """(b1, b2, h) [m] of the rock form: b_i = h tan alpha_i with ``h``; with R_1, R_2
+        the corners at (-R_1 sin alpha_1, -R_1 cos alpha_1) and (R_2 sin alpha_2,
+        -R_2 cos alpha_2) from G, whose heights must agree (to 1e-9)."""
+        missing = [key for key in ("alpha_1", "alpha_2") if getattr(self, key) is None]
+        lengths = [key for key in ("R_1", "R_2", "h") if getattr(self, key) is not None]
+        if missing or not lengths:
+            raise FieldError(missing[0] if missing else "R_1", MISSING,
+                             "the rock form needs alpha_1, alpha_2 and R_1, R_2 or h")
+        if "h" in lengths and len(lengths) > 1:
+            raise FieldError("h", str(self.h), "give R_1, R_2 or h, not both")
+        if lengths in (["R_1"], ["R_2"]):
+            raise FieldError("R_2" if lengths == ["R_1"] else "R_1", MISSING,
+                             "the rock form needs R_1 and R_2 (or h)")
+        a1, a2 = self.alpha_1.to_si(), self.alpha_2.to_si()
+        for key, a in (("alpha_1", a1), ("alpha_2", a2)):
+            if not 0.0 < a < math.pi / 2:
+                raise FieldError(key, str(getattr(self, key)), "must lie between 0 and 90 deg")
+        if self.h is not None:
+            h = self.h.to_si()
+            return h * math.tan(a1), h * math.tan(a2), h
+        R1, R2 = self.R_1.to_si(), self.R_2.to_si()
+        h1, h2 = R1 * math.cos(a1), R2 * math.cos(a2)
+        if abs(h1 - h2) > 1e-9 * max(h1, h2):
+            raise FieldError("R_2", str(self.R_2), _disagreeing_r2(self.R_2, h1 / math.cos(a2)))
+        return R1 * math.sin(a1), R2 * math.sin(a2), 0.5 * (h1 + h2)
 
-ROCK_KEYS = ("alpha_1", "alpha_2", "R_1", "R_2")
+
+ROCK_KEYS = ("alpha_1", "alpha_2", "R_1", "R_2", "h")
+
+
+def _disagreeing_r2(R_2, agreeing):
+    """The message of an ``R_2`` whose corner is not at the height of R_1's: the value
+    ``agreeing`` [m] that would be, in R_2's own unit."""
+    unit = R_2.unit or "m"
+    value = agreeing * R_2.value / R_2.to_si()
+    return (f"R_2 = {R_2.value:.12g} {unit} does not agree with R_1 cos alpha_1 / cos alpha_2 "
+            f"= {value:.6g} {unit}: give R_2: {value:.12g} {unit}, or use "
+            "{alpha_1, alpha_2, h}")
 
 
 class Contact(StrictModel):

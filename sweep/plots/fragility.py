@@ -16,13 +16,15 @@ import math
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from kernels import codes
 
 from ..bodies import G
-from ..probability.fragility import cells, describe_group, group_coords, group_indices
+from ..probability.fragility import (asymmetric, cells, describe_group, group_coords,
+                                     group_indices)
 from .style import fit_suptitle, fit_texts, legend_columns, plain_log_axis
 
 MAX_PANELS = 12  # more groups than this: this many, evenly spread over them
@@ -35,8 +37,11 @@ IM_AXES = {
     "pgv": ("PGV [cm/s]", CM),
     "pga_norm": ("PGA / (g tan α)", 1.0),
     "pgv_norm": ("PGV p / (g tan α)", 1.0),
+    "ground_pga": ("ground PGA under the building [m/s²]", 1.0),
+    "ground_pgv": ("ground PGV under the building [cm/s]", CM),
 }
-IM_UNITS = {"pga": "m/s²", "pgv": "cm/s", "pga_norm": "", "pgv_norm": ""}
+IM_UNITS = {"pga": "m/s²", "pgv": "cm/s", "pga_norm": "", "pgv_norm": "", "ground_pga": "m/s²",
+            "ground_pgv": "cm/s"}
 PROBABILITY_LINES = (0.1, 0.5, 0.9)
 OVERTURNED_STYLE = {"marker": "^", "s": 24, "facecolors": "black", "edgecolors": "white",
                     "linewidths": 0.5, "zorder": 3}
@@ -47,7 +52,13 @@ DATA_STYLE = {"fmt": "o", "ms": 4, "color": DATA_COLOUR, "ecolor": DATA_COLOUR, 
               "capsize": 2.5}
 FIT_STYLE = {"color": FIT_COLOUR, "lw": 1.6}
 BAND_STYLE = {"color": FIT_COLOUR, "alpha": 0.18, "lw": 0}
-BAND_METHODS = {"bootstrap": "BCa bootstrap over the members", "delta": "delta method"}
+BAND_METHODS = {"bootstrap": "pointwise percentiles of the bootstrap fits over the members",
+                "delta": "delta method"}
+# a body with G off the middle: k/n of each side (overturn_direction +1 left, -1 right),
+# drawn beside the level (a factor on the log axis) where any member overturned
+SIDE_STYLES = {"left": {"marker": "<", "ms": 5, "color": "#6a51a3", "ls": "none"},
+               "right": {"marker": ">", "ms": 5, "color": "#238b45", "ls": "none"}}
+SIDE_SHIFT = {"left": 1 / 1.05, "right": 1.05}
 
 
 def _shown_groups(frag):
@@ -116,6 +127,9 @@ def figure_curves(frag):
                     yerr=[p[present] - group["p_overturned_lower"].values[present],
                           group["p_overturned_upper"].values[present] - p[present]],
                     **DATA_STYLE)
+        sides = asymmetric(group) and "p_overturned_left" in group
+        if sides:
+            _draw_sides(ax, group, x, present)
         grid = frag["im_grid"].values * factor
         if int(group["fit_status"]) == 0:
             ax.fill_between(grid, group["p_fit_lower"], group["p_fit_upper"], **BAND_STYLE)
@@ -128,7 +142,8 @@ def figure_curves(frag):
             reason = _flag_meaning(frag["fit_status"], int(group["fit_status"]))
             fit = f"no lognormal fit: {reason.replace('_', ' ')}"
         # the fit's numbers under the group's name: no legend inside the panel to hide data
-        ax.set_title(f"{describe_group(group_coords(frag, index))}\n{fit}", fontsize=9)
+        name = describe_group(group_coords(frag, index)) + (_angles_text(group) if sides else "")
+        ax.set_title(f"{name}\n{fit}", fontsize=9)
         ax.grid(True, which="major", alpha=0.3)
     first = axes[0]
     first.set_xscale("log")
@@ -136,23 +151,44 @@ def figure_curves(frag):
     first.set_ylim(-0.03, 1.03)
     _label_outer(axes, label, "P(overturning)")
     members = int(frag["n_members"].max())
-    handles = [Line2D([], [], ls="", marker="o", ms=4, color=DATA_COLOUR,
-                      label=f"k/n at each {'bin' if binned else 'level'} (n ≤ {members}), "
-                            f"{interval} interval"),
-               Line2D([], [], **FIT_STYLE, label="lognormal fit (θ, β: panel titles)"),
-               Patch(**BAND_STYLE, label=f"{confidence} band of the fit")]
-    fig.legend(handles=handles, loc="outside lower center", fontsize=8, frameon=False,
-               ncols=legend_columns(fig, [h.get_label() for h in handles], 8))
-    if im == "pga":
+    entries = [(Line2D([], [], ls="", marker="o", ms=4, color=DATA_COLOUR),
+                f"k/n at each {'bin' if binned else 'level'} (n ≤ {members}), "
+                f"{interval} interval"),
+               (Line2D([], [], **FIT_STYLE), "lognormal fit (θ, β: panel titles)"),
+               (Patch(**BAND_STYLE), f"{confidence} pointwise band of the fit")]
+    if any(asymmetric(frag.isel(groups[which])) for which in shown) and \
+            "p_overturned_left" in frag:
+        entries.append((tuple(Line2D([], [], **style) for style in SIDE_STYLES.values()),
+                        "k/n that fell left (−x) / right (+x)"))
+    handles, labels = zip(*entries)
+    fig.legend(handles=handles, labels=labels, loc="outside lower center", fontsize=8,
+               frameon=False, handler_map={tuple: HandlerTuple(ndivide=None)},
+               ncols=legend_columns(fig, labels, 8))
+    if im in ("pga", "ground_pga"):
         for ax in axes[:COLUMNS]:
             top = ax.secondary_xaxis("top", functions=(lambda a: a / G, lambda a: a * G))
             plain_log_axis(top.xaxis)
-            top.set_xlabel("PGA [g]", fontsize=8)
+            top.set_xlabel(f"{label.split(' [')[0]} [g]", fontsize=8)
             top.tick_params(labelsize=8)
     band = BAND_METHODS[frag.attrs["fit_interval"]]
     _title(fig, frag, "fragility curves" + note, f"{confidence} intervals; band: {band}")
     fit_texts(fig)
     return fig
+
+
+def _draw_sides(ax, group, x, present):
+    """The probability of overturning to each side at each level where any member overturned,
+    beside it (``gid`` "left", "right")."""
+    shown = present & (group["k_overturned"].values > 0)
+    for side, style in SIDE_STYLES.items():
+        ax.plot(x[shown] * SIDE_SHIFT[side], group[f"p_overturned_{side}"].values[shown],
+                **style, gid=side)
+
+
+def _angles_text(group):
+    """" (α_1 20°, α_2 12°)": each side's angle of a group's body."""
+    return (f" (α_1 {math.degrees(float(group['alpha_1'])):.3g}°, "
+            f"α_2 {math.degrees(float(group['alpha_2'])):.3g}°)")
 
 
 def _label_outer(axes, xlabel, ylabel):

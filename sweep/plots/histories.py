@@ -12,9 +12,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from ..paper import criteria
 from ..paper.classify import FIGURE_PANELS
 from ..paper.plane import value_text
+from .scene import body_shape, side_angles
 from .style import GAL
 
 LAST_CYCLES = 5  # floor cycles shown before the final excursion at least
@@ -45,11 +45,13 @@ def _draw_history(ax_theta, ax_floor, found, window):
     h, rocking = found.result.history, found.rocking
     t = h["time"].values
     pick = (t >= window[0]) & (t <= window[1])
-    alpha = float(criteria.body_constants(h.attrs["B"], h.attrs["H"]).alpha)
+    alpha_1, alpha_2 = side_angles(body_shape(h))  # θ = α_1, −α_2: tipping over a corner
+    alpha = min(alpha_1, alpha_2)
     ax_theta.plot(t[pick], h["theta"].values[pick] / alpha, color="tab:blue", lw=0.8)
-    for level in (-1.0, 1.0):
-        ax_theta.axhline(level, color="0.5", ls=":", lw=0.8)
-    ax_theta.set_ylim(-2.0, 2.0)
+    for level in (alpha_1 / alpha, -alpha_2 / alpha):
+        ax_theta.axhline(level, color="0.5", ls=":", lw=0.8, gid="alpha")
+    limit = max(2.0, 1.15 * max(alpha_1, alpha_2) / alpha)
+    ax_theta.set_ylim(-limit, limit)
     ax_theta.set_ylabel("θ / α")
     ax_floor.plot(t[pick], h["a_x"].values[pick] / GAL, color="tab:red", lw=0.8,
                   label="horizontal")

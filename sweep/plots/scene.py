@@ -3,8 +3,10 @@ Figs 3-5) beside theta/alpha, the floor acceleration of each moving component an
 type, under a title that says what the body did (``runner.verdict``); and an animation.
 
 Every panel is scaled to its data: a floor component that is zero throughout gets no panel
-(a note says so), and the lines theta/alpha = ±1 are drawn only when the rocking comes within
-a factor of two of them (else a note names them).
+(a note says so), and the lines where the body tips over a corner, theta = alpha_1 and
+theta = -alpha_2 (theta/alpha = ±1 for a symmetric body), are drawn only when the rocking comes
+within a factor of two of alpha (else a note names them).  The body is drawn from G with its
+own base corners and G marked (docs/bodies.md).
 """
 import math
 import sys
@@ -34,30 +36,43 @@ GOLDEN = (math.sqrt(5) - 1) / 2
 ALPHA_LINE_REACH = 0.5        # theta/alpha = ±1 drawn when max |theta|/alpha is at least this
 FLOOR_MARKS = 12              # hatch marks under the floor across the animation's view
 FLOOR = {"a_x": ("horizontal", "tab:red"), "a_y": ("vertical", "tab:green")}
+ROCK = "rock"  # body_form of a history whose body was given by alpha_1, alpha_2 (R_i or h)
+G_STYLE = {"marker": "o", "color": "tab:red", "ms": 4, "ls": "none"}  # G marked
 
 
 def outline(x, y, theta, shape):
-    """Corners (5 points, closed) of the body with G at (x, y) at angle theta; ``shape`` =
-    (left, right, bottom, top): the sides' offsets from G in the body (:func:`body_shape`)."""
+    """The outline (closed) of the body with G at (x, y) at angle theta; ``shape``: its
+    vertices from G in the body, corner 1 and corner 2 first (:func:`body_shape`)."""
     c, s = np.cos(theta), np.sin(theta)
-    left, right, bottom, top = shape
-    local = np.array([[left, bottom], [right, bottom], [right, top], [left, top],
-                      [left, bottom]])
+    local = np.vstack([shape, shape[:1]])
     return x + local[:, 0] * c - local[:, 1] * s, y + local[:, 0] * s + local[:, 1] * c
 
 
 def body_shape(ds):
-    """(left, right, bottom, top) offsets of the body's sides from G [m], from the attributes
-    ``B``, ``H`` and G (``x_G``, ``y_G``; default the middle) of a history Dataset."""
+    """The vertices of the body's outline from G [m], shape (n, 2): the base corners
+    (-b1, -y_G) and (b2, -y_G) first, from the attributes ``B``, ``H``, G (``x_G``, ``y_G``;
+    default the middle) and ``body_form`` of a history Dataset.  A body given by B and H is
+    the B x H rectangle; a rock (``body_form`` ``rock``: alpha_1, alpha_2 with R_1, R_2 or
+    h) is known by its base corners and G only, and drawn as the triangle of its base and
+    the point at height H above the base over G."""
     B, H = float(ds.attrs["B"]), float(ds.attrs["H"])
     x_G, y_G = float(ds.attrs.get("x_G", 0.0)), float(ds.attrs.get("y_G", 0.5 * H))
-    return -0.5 * B - x_G, 0.5 * B - x_G, -y_G, H - y_G
+    left, right, top = -0.5 * B - x_G, 0.5 * B - x_G, H - y_G
+    if ds.attrs.get("body_form") == ROCK:
+        return np.array([[left, -y_G], [right, -y_G], [0.0, top]])
+    return np.array([[left, -y_G], [right, -y_G], [right, top], [left, top]])
+
+
+def side_angles(shape):
+    """(alpha_1, alpha_2) [rad]: atan(b_i / y_G) of the base corners of a body shape, the
+    angles of theta at which the body tips over corner 1 (theta > 0) and corner 2."""
+    (left, bottom), (right, _) = shape[:2]
+    return math.atan2(-left, -bottom), math.atan2(right, -bottom)
 
 
 def slenderness(shape):
     """The smaller side's slenderness angle atan(b_i / y_G) of a body shape [rad]."""
-    left, right, bottom, _ = shape
-    return min(math.atan2(-left, -bottom), math.atan2(right, -bottom))
+    return min(side_angles(shape))
 
 
 def scene_verdict(ds):
@@ -83,28 +98,33 @@ def quiet_components(ds):
 def _outlines(ds, shape):
     """Outlines of the body while it moves (from the sample before it leaves rest to the one
     after it comes back for good; the whole history if it never moves), at most
-    ``MAX_OUTLINES``: (xs, ys) in cm of shape (n, 5), the time between two, first and last."""
+    ``MAX_OUTLINES``: (xs, ys) in cm of shape (n, vertices + 1), G's (x, y) in cm at each,
+    the time between two, first and last."""
     t = ds["time"].values
     moving = np.flatnonzero(ds["mode"].values != REST)
     first, last = (max(moving[0] - 1, 0), min(moving[-1] + 1, t.size - 1)) if moving.size \
         else (0, t.size - 1)
     stride = max(1, int(np.ceil((last - first + 1) / MAX_OUTLINES)))
     pick = slice(first, last + 1, stride)
-    xs, ys = outline(ds.x.values[pick, None], ds.y.values[pick, None],
-                     ds.theta.values[pick, None], shape)
+    x, y = ds.x.values[pick, None], ds.y.values[pick, None]
+    xs, ys = outline(x, y, ds.theta.values[pick, None], shape)
     every = stride * (t[1] - t[0]) if t.size > 1 else 0.0
-    return xs * 100, ys * 100, every, t[first], t[pick][-1]
+    return xs * 100, ys * 100, (x[:, 0] * 100, y[:, 0] * 100), every, t[first], t[pick][-1]
 
 
-def _draw_positions(ax, xs, ys, every, t_first, t_last):
+def _draw_positions(ax, xs, ys, centres, every, t_first, t_last, rock=False):
+    """The outlines coloured by time, G marked at the first and the last (``gid`` "outline"
+    and "G"); a rock's outline named as what it is."""
     for px, py, colour in zip(xs, ys, plt.cm.viridis(np.linspace(0, 1, len(xs)))):
-        ax.plot(px, py, color=colour, lw=0.6)
+        ax.plot(px, py, color=colour, lw=0.6, gid="outline")
+    ax.plot(*(np.asarray(c)[[0, -1]] for c in centres), **G_STYLE, gid="G")
     ax.axhline(0, color="k", lw=1.5)
     ax.set_aspect("equal")
     ax.set_xlabel("x relative to the floor [cm]")
     ax.set_ylabel("height [cm]")
-    ax.set_title(f"positions every {every:.3g} s\n(colour: time {t_first:.2f} → {t_last:.2f} s)",
-                 fontsize=9)
+    drawn = "rock: base corners, G (red),\napex at H above the base" if rock else "G in red"
+    ax.set_title(f"positions every {every:.3g} s\n(colour: time {t_first:.2f} → "
+                 f"{t_last:.2f} s)\n{drawn}", fontsize=9)
 
 
 def _wrap(text, width):
@@ -125,22 +145,33 @@ def _note(ax, text):
     ax.set_title(f"{said}; {text}" if said else text, loc="right", fontsize=8, color="0.4")
 
 
-def _draw_theta(ax, ds, alpha):
-    """θ/α on an axis scaled to it; ±1 (where the body tips past its corner) drawn faintly
-    when within reach, else named."""
+def _draw_theta(ax, ds, sides):
+    """θ/α (α the smaller of ``sides`` = (α_1, α_2)) on an axis scaled to it; the lines
+    θ = α_1 and θ = −α_2 (where the body tips past corner 1 or 2: θ/α = ±1 for a symmetric
+    body) drawn faintly when within reach, else named."""
+    alpha = min(sides)
     ratio = ds.theta.values / alpha
     peak = float(np.max(np.abs(ratio)))
+    levels = (sides[0] / alpha, -sides[1] / alpha)
     ax.plot(ds["time"].values, ratio, lw=1, color="tab:blue")
     ax.axhline(0, color="0.8", lw=0.6, zorder=0)
     limit = 1.15 * peak if peak > 0 else 1.0
+    symmetric = sides[0] == sides[1]
     if peak >= ALPHA_LINE_REACH:
-        for level in (-1, 1):
-            ax.axhline(level, color="0.6", ls=":", lw=0.8)
-        limit = max(limit, 1.15)
+        for level, name in zip(levels, ("α_1", "−α_2")):
+            ax.axhline(level, color="0.6", ls=":", lw=0.8, gid="alpha")
+            if not symmetric:
+                ax.annotate(f"θ = {name}", (1.0, level), xycoords=("axes fraction", "data"),
+                            xytext=(-2, 2), textcoords="offset points", ha="right",
+                            fontsize=7, color="0.4")
+        limit = max(limit, 1.15 * max(abs(level) for level in levels))
     else:
-        _note(ax, "overturning at θ/α = ±1, off this scale")
+        _note(ax, "overturning at θ/α = ±1, off this scale" if symmetric else
+              f"overturning at θ/α = {levels[0]:.3g} (α_1) and {levels[1]:.3g} (−α_2), "
+              "off this scale")
     ax.set_ylim(-limit, limit)
-    ax.set_ylabel(f"θ / α\n(α = {alpha:.3g} rad)")
+    governing = "" if symmetric else "α_1 = " if sides[0] < sides[1] else "α_2 = "
+    ax.set_ylabel(f"θ / α\n(α = {governing}{alpha:.3g} rad)")
 
 
 def draw_scene(ds, name="", caption=()):
@@ -149,10 +180,9 @@ def draw_scene(ds, name="", caption=()):
     (:func:`scene_verdict`) over ``name`` (the scene's file or name), smaller, and captioned
     with the lines of ``caption`` (how each record was read, ``records.provenance_line``)."""
     shape = body_shape(ds)
-    alpha = slenderness(shape)
     quiet = quiet_components(ds)
     moving = [component for component in FLOOR if component not in quiet]
-    xs, ys, *times = _outlines(ds, shape)
+    xs, ys, *positions = _outlines(ds, shape)
     # the positions panel as wide as the body's sweep needs beside the 5-inch-high panels
     aspect = np.ptp(xs) / max(np.max(ys) - min(np.min(ys), 0.0), 1e-9)
     fig = plt.figure(figsize=(12, 6.5), layout="constrained")
@@ -165,9 +195,10 @@ def draw_scene(ds, name="", caption=()):
     heights = [1.5, *[1.0] * len(moving), 0.9]
     grid = body.add_gridspec(len(heights), 2, height_ratios=heights,
                              width_ratios=[float(np.clip(aspect * 0.8, 0.3, 1.2)), 1])
-    _draw_positions(body.add_subplot(grid[:, 0]), xs, ys, *times)
+    _draw_positions(body.add_subplot(grid[:, 0]), xs, ys, *positions,
+                    rock=ds.attrs.get("body_form") == ROCK)
     ax_theta = body.add_subplot(grid[0, 1])
-    _draw_theta(ax_theta, ds, alpha)
+    _draw_theta(ax_theta, ds, side_angles(shape))
     t = ds["time"].values
     for row, component in enumerate(moving, start=1):
         label, colour = FLOOR[component]
@@ -289,7 +320,7 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
     if not 0 < fps <= MAX_FPS:
         raise ValueError(f"fps must be above 0 and at most {MAX_FPS}, got {fps:g}")
     shape = body_shape(ds)
-    b, h = 0.5 * (shape[1] - shape[0]), 0.5 * (shape[3] - shape[2])
+    b, h = 0.5 * np.ptp(shape, axis=0)
     t = ds["time"].values
     dt = float(t[1] - t[0]) if t.size > 1 else 1.0 / FPS
     t0, t1, how = animation_window(ds, start, end)
@@ -333,8 +364,8 @@ def animate_scene(ds, path, name="", quiet=False, fps=FPS, start=None, end=None)
         fig.text(0.5, y_text, _short(name, NAME_WIDTH), ha="center", va="top",
                  fontsize=8, color="0.35")
     (floor,) = ax.plot([], [], color="k", lw=1.5)
-    (body,) = ax.plot([], [], color="tab:blue", lw=2)
-    (centre_of_gravity,) = ax.plot([], [], "o", color="tab:red", ms=4)
+    (body,) = ax.plot([], [], color="tab:blue", lw=2, gid="outline")
+    (centre_of_gravity,) = ax.plot([], [], **G_STYLE, gid="G")
     label = ax.set_title(" ", fontsize=9)
     moving = [floor, body, centre_of_gravity, *ax.spines.values(), label]  # the drawing order
     for artist in moving:

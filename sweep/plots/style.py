@@ -60,9 +60,27 @@ def cell_edges(values, log):
     return np.exp(e) if log else e
 
 
+FEW_DECADES = 3.0  # a log axis over more decades is labelled at powers of 10 only
+MOST_DECADES = 7  # powers of 10 labelled at most: every other (third, ...) over more
+
+
+class SparseLogLocator(LogLocator):
+    """Major ticks of a log axis at 1, 2, 5 x 10^k over at most ``FEW_DECADES`` decades;
+    over more, at powers of 10, every other (third, ...) one beyond ``MOST_DECADES``, so that
+    no labels collide over nine decades."""
+
+    def tick_values(self, vmin, vmax):
+        low, high = sorted((vmin, vmax))
+        few = not low > 0 or np.log10(high / low) <= FEW_DECADES
+        self.set_params(subs=(1.0, 2.0, 5.0) if few else (1.0,),
+                        numticks="auto" if few else MOST_DECADES)
+        return super().tick_values(vmin, vmax)
+
+
 def plain_log_axis(axis):
-    """Log-scale ticks at 1, 2, 5 x 10^k written as plain numbers (0.2, 50, 100)."""
-    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    """Log-scale ticks written as plain numbers (0.2, 50, 100): at 1, 2, 5 x 10^k, at
+    powers of 10 over many decades (:class:`SparseLogLocator`)."""
+    axis.set_major_locator(SparseLogLocator())
     axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
     axis.set_minor_formatter(NullFormatter())
 

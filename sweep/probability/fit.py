@@ -44,8 +44,8 @@ FIT_REASONS = (
     "fewer than 2 distinct intensity levels (3 for a surface)",
     "no member overturned at any level",
     "every member overturned at every level",
-    "perfect separation: no overturning below the levels where all overturned, so the "
-    "maximum-likelihood beta is 0",
+    "the levels separate: no member overturned at a level below one at which a member "
+    "stood, so the maximum-likelihood beta is 0",
     "the maximum-likelihood iterations did not converge",
     "the fitted probability falls as the intensity grows: not a fragility function",
 )
@@ -82,6 +82,9 @@ class LognormalFit:
     unfitted_replicates : int
         Bootstrap replicates left out (no overturning, all overturned, one level, not
         converged).
+    log_levels : ndarray or None
+        The distinct ln x of the data, through which :meth:`band` draws a separated
+        replicate.
     """
 
     theta: float
@@ -98,6 +101,7 @@ class LognormalFit:
     covariance: np.ndarray
     replicates: np.ndarray = None
     unfitted_replicates: int = 0
+    log_levels: np.ndarray = None
 
     @property
     def identifiable(self):
@@ -110,8 +114,8 @@ class LognormalFit:
 
     def band(self, x):
         """Pointwise (lower, upper) confidence band of P(x): percentiles of the bootstrap
-        curves at each x (smooth where BCa's correction of a curve of 0s and 1s is not), or
-        Φ(η ± z se(η)) with η = b0 + b1 ln x by the delta method."""
+        curves at each x (:func:`replicate_curves`; smooth where BCa's correction of a curve
+        of 0s and 1s is not), or Φ(η ± z se(η)) with η = b0 + b1 ln x by the delta method."""
         x = np.asarray(x, dtype=float)
         if not self.identifiable or (self.interval == "bootstrap"
                                      and not len(self.replicates)):
@@ -119,8 +123,7 @@ class LognormalFit:
         with np.errstate(divide="ignore"):
             log_x = np.log(x)
         if self.interval == "bootstrap":
-            curves = _lognormal_cdf(log_x[..., None], self.replicates[:, 0],
-                                    self.replicates[:, 1])
+            curves = replicate_curves(log_x, self.replicates, self.log_levels)
             tail = 50.0 * (1.0 - self.confidence)
             return tuple(np.percentile(curves, [tail, 100.0 - tail], axis=-1))
         eta = self.coefficients[0] + self.coefficients[1] * log_x
@@ -174,6 +177,24 @@ def _lognormal_cdf(log_x, log_theta, beta):
     return np.where(beta > 0, _phi(z), step)
 
 
+def replicate_curves(log_x, replicates, log_levels=None):
+    """P at ``log_x`` of each bootstrap replicate (ln θ, β), shape ``log_x.shape + (R,)``.
+
+    A replicate whose levels separate (β = 0) is a step somewhere between two levels
+    ``log_levels``, where its data do not place it: its curve is drawn through its values
+    at the levels (0 below the step, 1 above, 1/2 on it) joined linearly in ln x, so that
+    the band has no wall at a step.
+    """
+    log_x = np.asarray(log_x, dtype=float)
+    curves = _lognormal_cdf(log_x[..., None], replicates[:, 0], replicates[:, 1])
+    steps = replicates[:, 1] == 0
+    if steps.any() and log_levels is not None and np.size(log_levels) > 1:
+        at_levels = _lognormal_cdf(np.asarray(log_levels)[:, None], replicates[steps, 0], 0.0)
+        curves[..., steps] = np.stack([np.interp(log_x, log_levels, values)
+                                       for values in at_levels.T], axis=-1)
+    return curves
+
+
 def _used_rows(x, k, n):
     """The rows with n > 0 and a positive finite x (after checking 0 <= k <= n, whole)."""
     if np.any(k < 0) or np.any(k > n) or np.any(k != np.round(k)) or np.any(n != np.round(n)):
@@ -199,6 +220,26 @@ def data_status(log_x, k, n):
     if log_x[n - k > 0].max() <= log_x[k > 0].min():
         return SEPARATED
     return FITTED
+
+
+def separation_reason(log_x, k, n):
+    """How levels (``log_x``, k of n) separate, in words true of them: a gap between the
+    highest level where a member stood and the lowest where one overturned, or one level
+    with both, with none overturned below it and all above it (where there are levels);
+    ``FIT_REASONS[SEPARATED]`` when they do not separate so (statsmodels found it)."""
+    if data_status(log_x, k, n) != SEPARATED:
+        return FIT_REASONS[SEPARATED]
+    used = n > 0
+    standing, overturned = log_x[used & (n > k)].max(), log_x[k > 0].min()
+    if standing < overturned:
+        return ("the levels separate: none overturned up to a level, all overturned above "
+                "it, so the maximum-likelihood beta is 0")
+    said = ["only one level had members overturned and standing"]
+    if np.any(used & (log_x < standing)):
+        said.append("none overturned below it")
+    if np.any(used & (log_x > standing)):
+        said.append("all overturned above it")
+    return ", ".join(said) + ": the levels separate there, so the maximum-likelihood beta is 0"
 
 
 def _probit_glm(design, k, n):
@@ -275,8 +316,10 @@ def fit_lognormal(x, k, n=1, members=None, *, confidence=0.95, interval="bootstr
             status = DECREASING
     if status != FITTED:
         nan2 = (np.nan, np.nan)
+        reason = separation_reason(levels, k_level, n_level) if status == SEPARATED else \
+            FIT_REASONS[status]
         return LognormalFit(np.nan, np.nan, nan2, nan2, status=status,
-                            reason=FIT_REASONS[status], coefficients=np.full(2, np.nan),
+                            reason=reason, coefficients=np.full(2, np.nan),
                             covariance=np.full((2, 2), np.nan), **common)
     b0, b1 = coefficients
     theta, beta = np.exp(-b0 / b1), 1.0 / b1
@@ -302,7 +345,7 @@ def fit_lognormal(x, k, n=1, members=None, *, confidence=0.95, interval="bootstr
     return LognormalFit(float(theta), float(beta), theta_interval, beta_interval,
                         status=FITTED, reason=FIT_REASONS[FITTED], coefficients=coefficients,
                         covariance=covariance, replicates=resampled,
-                        unfitted_replicates=unfitted, **common)
+                        unfitted_replicates=unfitted, log_levels=levels, **common)
 
 
 def _delta_intervals(coefficients, covariance, confidence):

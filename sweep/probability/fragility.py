@@ -7,8 +7,11 @@ the probabilities of overturning (outcome 2), of rocking (outcome >= 1) and of s
 (``slid`` = 1) over the members with binomial intervals, and the median of the intensity
 measure (IM); for each group: the lognormal fragility of overturning fitted to the cells
 (``sweep.probability.fit``), and with ``pga`` and ``pgv`` in the dataset the two-parameter
-surface.  Without a levels dimension (records at their own amplitudes) the fit is a "cloud"
-fit on the IM of each cell, and the probabilities are given in bins of equal width in ln IM.
+surface.  The IM of a cell is that of the motion applied to the body (``pga``, ``pgv``: on a
+building's floor, the floor's), or that of the ground under the building (``ground_pga``,
+``ground_pgv``: the axis that scales a floor's ground, the IM a site's hazard is in).
+Without a levels dimension (records at their own amplitudes) the fit is a "cloud" fit on the
+IM of each cell, and the probabilities are given in bins of equal width in ln IM.
 Failed cells (outcome −1) are left out of every count and fit, and counted.
 """
 from collections import namedtuple
@@ -30,7 +33,11 @@ INTENSITY_MEASURES = {
     "pgv": ("m s-1", "peak ground velocity"),
     "pga_norm": ("1", "PGA / (g tan alpha)"),
     "pgv_norm": ("1", "PGV p / (g tan alpha)"),
+    "ground_pga": ("m s-2", "peak ground acceleration under the building"),
+    "ground_pgv": ("m s-1", "peak ground velocity under the building"),
 }
+GROUND = "excitation.horizontal.ground."  # the keys of a floor's ground (kind: floor)
+GROUND_IMS = {"ground_pga": GROUND + "pga", "ground_pgv": GROUND + "pgv"}  # IM: its axis
 LEVEL_NAMES = ("pga", "pgv", "scale", "amplitude")  # dimensions that scale the motions
 AUTO = "auto"  # levels: the first of LEVEL_NAMES in the dataset (``default_levels``)
 DEFAULT_BINS = 8  # bins in ln IM without a levels dimension
@@ -40,6 +47,7 @@ BIN, GRID, TERM = "im_bin", "im_grid", "term"
 LEVEL = "level"  # in the table below: the levels dimension, or BIN
 SURFACE_TERMS = ("intercept", "ln_pga", "ln_pgv")
 EVENTS = ("overturned", "overturned_left", "overturned_right", "rocked", "slid")
+SIDE_ANGLES = ("alpha_1", "alpha_2")  # each side's angle of a group's body
 
 _IM = None  # units None and "{axis}" in the table: the IM's units and long name
 FRAGILITY_VARIABLES = {
@@ -100,6 +108,12 @@ FRAGILITY_VARIABLES = {
         "float64", "m s-2", "West's acceleration (B/H) g of the group's body",
         comment="no rocking, hence no overturning, below it without vertical motion (Eq. 1); "
                 "the surface is fitted above it when no cell below it overturned"),
+    **{name: cf.Variable("float64", "rad", f"angle at G between the vertical and corner "
+                                           f"{side} of the group's body",
+                         comment=f"atan(b{side[0]}/y_G): it tips {towards} when "
+                                 f"{sign}a_x > g tan {name}; alpha_1 = alpha_2: G in the middle")
+       for name, side, towards, sign in zip(SIDE_ANGLES, ("1 (left, -x)", "2 (right, +x)"),
+                                            ("to the left", "to the right"), ("", "-"))},
 }
 
 
@@ -132,12 +146,20 @@ def body_dimension(ds, dim):
     return any(_sections(axis) & set(BODY_SECTIONS) for axis in _study_axes(ds, dim))
 
 
+def level_dimension(ds, dim):
+    """True when dimension ``dim`` of a study's dataset scales the motions: one of
+    ``LEVEL_NAMES``, or the axis of a floor's ground that sets one of them
+    (``excitation.horizontal.ground.pga``)."""
+    return dim in LEVEL_NAMES or any(axis in {GROUND + name for name in LEVEL_NAMES}
+                                     for axis in _study_axes(ds, dim))
+
+
 def ensemble_dimensions(ds, levels=None):
     """The dimensions of a study's dataset whose cells can be the members of an ensemble:
     those of the motion (``record``, ``seed``, ``phase``, a scenario's ``magnitude``, ...),
-    but for the levels (``levels`` and the dimensions of ``LEVEL_NAMES``)."""
+    but for the levels (``levels`` and those of :func:`level_dimension`)."""
     dims = ds["outcome"].dims if "outcome" in ds.variables else ()
-    return [d for d in dims if d != levels and d not in LEVEL_NAMES
+    return [d for d in dims if d != levels and not level_dimension(ds, d)
             and not body_dimension(ds, d)]
 
 
@@ -155,9 +177,22 @@ with the groups)."""
 
 def default_levels(ds, over):
     """The dimension that scales the motions: the first of ``LEVEL_NAMES`` in the dataset's
-    cells that is not an ensemble dimension, or None."""
-    dims = ds["outcome"].dims if "outcome" in ds.variables else ()
-    return next((name for name in LEVEL_NAMES if name in dims and name not in over), None)
+    cells that is not an ensemble dimension, else the first that scales a floor's ground
+    (:func:`level_dimension`), or None."""
+    dims = [d for d in (ds["outcome"].dims if "outcome" in ds.variables else ())
+            if d not in over]
+    return next((name for name in LEVEL_NAMES if name in dims),
+                next((d for d in dims if level_dimension(ds, d)), None))
+
+
+def im_values(ds, im):
+    """The intensity measure ``im`` of a study's cells: its variable or coordinate, or for
+    ``ground_pga`` and ``ground_pgv`` the coordinate of the axis that scales a floor's ground
+    to it; None when the dataset has none."""
+    if im in GROUND_IMS:
+        return next((c for c in ds.coords.values()
+                     if c.attrs.get("study_axis") == GROUND_IMS[im]), None)
+    return ds[im] if im in ds.variables else None
 
 
 def validate_request(ds, over, im, levels):
@@ -191,13 +226,20 @@ def validate_request(ds, over, im, levels):
     if im not in INTENSITY_MEASURES:
         raise FragilityError(f"unknown intensity measure '{im}'; one of "
                              f"{', '.join(INTENSITY_MEASURES)}")
-    if im not in ds.variables:
-        present = [name for name in INTENSITY_MEASURES if name in ds.variables]
-        raise FragilityError(f"the dataset has no intensity measure '{im}' (it has: "
+    values = im_values(ds, im)
+    if values is None:
+        present = [name for name in INTENSITY_MEASURES if im_values(ds, name) is not None]
+        scaled = f" (no axis {GROUND_IMS[im]} scales a floor's ground)" if im in GROUND_IMS \
+            else ""
+        raise FragilityError(f"the dataset has no intensity measure '{im}'{scaled} (it has: "
                              f"{', '.join(present) or 'none'})")
-    if not set(ds[im].dims) <= set(dims):
-        raise FragilityError(f"'{im}' has dimensions {', '.join(ds[im].dims)} that the "
+    if not set(values.dims) <= set(dims):
+        raise FragilityError(f"'{im}' has dimensions {', '.join(values.dims)} that the "
                              f"cells ({listed}) do not have")
+    if im in GROUND_IMS and values.attrs.get("units") != INTENSITY_MEASURES[im][0]:
+        raise FragilityError(f"'{im}': the axis {GROUND_IMS[im]} is in units "
+                             f"{values.attrs.get('units')}, relative to the body; give the "
+                             f"ground's levels in {INTENSITY_MEASURES[im][0]}, g, cm/s ...")
 
 
 def cells(ds, over, im, levels):
@@ -222,14 +264,14 @@ def cells(ds, over, im, levels):
                  arranged(ds["slid"]).astype(np.int64) if "slid" in ds.variables else None,
                  arranged(ds["overturn_direction"]).astype(np.int64)
                  if "overturn_direction" in ds.variables else None,
-                 arranged(ds[im]).astype(float), along(groups, scalars=True),
+                 arranged(im_values(ds, im)).astype(float), along(groups, scalars=True),
                  along(level_dims, scalars=False))
 
 
 def im_attrs(ds, im):
     """Units and long name of the intensity measure (the dataset's, else the defaults)."""
     units, long_name = INTENSITY_MEASURES[im]
-    attrs = ds[im].attrs
+    attrs = {} if im in GROUND_IMS else im_values(ds, im).attrs  # an axis: its path as name
     return SimpleNamespace(units=attrs.get("units", units),
                            long_name=attrs.get("long_name", long_name))
 
@@ -245,8 +287,8 @@ def fragility(ds, over, im, levels=AUTO, *, bins=DEFAULT_BINS, confidence=0.95,
         A study's dataset (``outcome``, optionally ``slid``, and ``im`` on its cells).
     over : sequence of str
         Ensemble dimensions: their cells are the members.
-    im : {"pga", "pgv", "pga_norm", "pgv_norm"}
-        Intensity measure, a variable or a coordinate of ``ds``.
+    im : {"pga", "pgv", "pga_norm", "pgv_norm", "ground_pga", "ground_pgv"}
+        Intensity measure, a variable or a coordinate of ``ds`` (:func:`im_values`).
     levels : str or None
         The dimension along which the members are scaled; ``AUTO``: the one
         :func:`default_levels` finds; None: each cell at its own IM, binned in ln IM.
@@ -312,6 +354,9 @@ def fragility(ds, over, im, levels=AUTO, *, bins=DEFAULT_BINS, confidence=0.95,
         west = (pga / cells(ds, over, "pga_norm", levels).im if "pga_norm" in ds.variables
                 else np.full(pga.shape, np.nan))
         arrays.update(_surfaces(pga, pgv, west, data.outcome, counted))
+    if "alpha_1" in ds.variables:  # each side's angle: G off the middle when they differ
+        arrays.update({name: _group_median(cells(ds, over, name, levels).im)
+                       for name in SIDE_ANGLES})
     axis = im_attrs(ds, im)
     group_dims = data.dims[:-2]
     group_shape = tuple(ds.sizes[d] for d in group_dims)
@@ -424,6 +469,11 @@ def _fits(data, counted, grid, confidence, fit_interval, replicates, seed):
     return {**out, **curves}
 
 
+def _group_median(values):
+    """The median over each group's cells of ``values`` (groups, levels, members)."""
+    return np.nanmedian(values.reshape(values.shape[0], -1), axis=1)
+
+
 def _surfaces(pga, pgv, west, outcome, counted):
     """The two-parameter fit of each group: coefficients, status and West's acceleration.
 
@@ -525,6 +575,13 @@ def group_coords(frag, index):
     return {name: (c.isel({d: i for d, i in index.items() if d in c.dims}).item(),
                    c.attrs.get("units"))
             for name, c in frag.coords.items() if set(c.dims) <= set(index)}
+
+
+def asymmetric(group):
+    """True when the body of ``group`` (one group of a fragility dataset) has G off the middle
+    of its base: its ``SIDE_ANGLES`` differ."""
+    return all(name in group for name in SIDE_ANGLES) and \
+        float(group["alpha_1"]) != float(group["alpha_2"])
 
 
 def group_indices(frag):

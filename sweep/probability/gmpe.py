@@ -12,6 +12,11 @@ the fault vertical (dip 90°), its top at the hypocentre and 1 km wide.  The mod
 
 They predict RotD50 (the median over horizontal orientations), ``sigma`` is the total
 standard deviation of ln IM.  pygmm returns g for PGA and spectral accelerations, cm/s for PGV.
+All four are models of shallow crustal earthquakes in active regions, fitted to the same
+NGA-West2 data (Gregor et al. 2014, Earthquake Spectra 30, 1179-1197, compare their ranges):
+Campbell & Bozorgnia (2014) state hypocentres Z_HYP ≤ 20 km and Chiou & Youngs (2014) tops of
+rupture Z_TOR ≤ 20 km (pygmm's limits too; here Z_TOR is the depth); ASK14 and BSSA14 (which
+has no depth term) rest on the same shallow earthquakes: :data:`MAX_DEPTH`.
 """
 from collections import namedtuple
 
@@ -23,6 +28,7 @@ MODELS = {"BSSA14": "BooreStewartSeyhanAtkinson2014", "ASK14": "AbrahamsonSilvaK
           "CB14": "CampbellBozorgnia2014", "CY14": "ChiouYoungs2014"}
 MECHANISMS = ("SS", "NS", "RS")  # strike-slip, normal, reverse (pygmm's names)
 POINT_WIDTH_KM = 1.0  # down-dip width given to a point rupture
+MAX_DEPTH = 20e3  # m: the deepest hypocentre of the models' stated ranges
 
 Prediction = namedtuple("Prediction", "ln_median sigma")
 Prediction.__doc__ = """ln of the median IM [ln(m/s²) or ln(m/s)] and the standard deviation of

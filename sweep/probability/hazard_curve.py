@@ -1,40 +1,32 @@
 """Hazard curves: the mean annual rate λ(x) at which a site's intensity measure exceeds x.
 
 A :class:`HazardCurve` holds an intensity measure (``pga``, ``pgv`` or ``sa(T)``), its levels
-in SI units (m/s² for accelerations, m/s for PGV) and their annual rates of exceedance.  It is
-read from
-
-* OpenQuake's ``hazard_curve-*.csv`` (:func:`read_openquake_csv`): a comment line with
-  ``investigation_time`` and ``imt``, then ``lon,lat[,depth],poe-<level>...``; levels in g
-  (cm/s for PGV), probabilities of exceedance P in the investigation time T;
-* a USGS hazard curve export (:func:`read_usgs_json`, the JSON of the USGS hazard web
-  service): ``response[].metadata.imt``, ``xvalues`` (g, cm/s for PGV) and ``data[].yvalues``,
-  annual frequencies of exceedance (the ``Total`` component);
-* two columns (:func:`read_columns`): ``im, annual_rate`` or ``im, poe`` with the investigation
-  time, the units of ``im`` stated.
+in SI units (m/s² for accelerations, m/s for PGV) and their annual rates of exceedance; it is
+read from OpenQuake, USGS and two-column files by ``sweep.probability.hazard_files``, or
+computed from a source model (``sweep.probability.source_hazard``).
 
 Probabilities of exceedance become rates by the Poisson model, λ = −ln(1 − P)/T
-(:func:`rate_from_poe`; docs/probability.md §9).  Between levels the curve is a power law (straight
-in log–log), λ(x) = λ_i (x/x_i)^(−k_i) (:meth:`HazardCurve.rate`).  Problems of a file raise
-:class:`HazardFileError`, one line each, with the file and where in it.
+(:func:`rate_from_poe`; docs/risk.md).  Between levels the curve is a power law (straight in
+log–log), λ(x) = λ_i (x/x_i)^(−k_i) (:meth:`HazardCurve.rate`).  A curve that is not one (levels
+not increasing, rates rising or not positive) raises :class:`HazardFileError`, one line.
 """
-import csv
-import json
-import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from ..bodies import G
-from ..io.imt import SI_UNITS, im_dimension, normalize_im, openquake_imt  # noqa: F401
-
-# units of the levels in the formats read: OpenQuake and USGS write g and cm/s
-FORMAT_FACTOR = {"acceleration": G, "velocity": 0.01}
-
+from ..io.imt import SI_UNITS, im_dimension
 
 class HazardFileError(ValueError):
-    """A hazard curve that cannot be used: ``str`` says where and why, on one line."""
+    """A hazard curve that cannot be used: ``str`` says where and why, on one line.
+
+    ``key`` names the setting the problem is about when a caller may give it (``im``,
+    ``units``, ``kind``, ``investigation_time``: a given value that contradicts the file, or
+    one that neither states; ``site``: a row the file has not); None for the file itself.
+    """
+
+    def __init__(self, message, key=None):
+        super().__init__(message)
+        self.key = key
 
 
 def rate_from_poe(poe, investigation_time):
@@ -126,164 +118,3 @@ def curve_problem(levels, rates):
         return (f"the rate of exceedance rises from {rates[i]:g} at {levels[i]:g} to "
                 f"{rates[i + 1]:g} at {levels[i + 1]:g}: a hazard curve never increases")
     return None
-
-
-def _float(text, where):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        raise HazardFileError(f"{where}: not a number: {text!r}") from None
-
-
-def read_openquake_csv(path, site=0):
-    """The curve of row ``site`` of OpenQuake's ``hazard_curve-*.csv``.
-
-    The first line is a comment (``#,,,,"..., investigation_time=50.0, imt='PGA'"``); the
-    header names ``lon, lat`` (``depth`` in recent versions) and ``poe-<level>`` columns, the
-    levels in g (cm/s for PGV).  Rates λ = −ln(1 − P)/T; levels whose P is 0 are dropped (no
-    exceedance: the curve ends there).
-    """
-    path = Path(path)
-    lines = path.read_text().splitlines()
-    if not lines or not lines[0].startswith("#"):
-        raise HazardFileError(f"{path}: line 1: not an OpenQuake hazard curve (no comment line "
-                              "with investigation_time and imt)")
-    meta = lines[0]
-    found_time = re.search(r"investigation_time\s*=\s*([0-9.eE+-]+)", meta)
-    found_imt = re.search(r"imt\s*=\s*'([^']+)'", meta)
-    if not found_time or not found_imt:
-        raise HazardFileError(f"{path}: line 1: investigation_time and imt not found")
-    investigation_time = _float(found_time.group(1), f"{path}: line 1: investigation_time")
-    try:
-        im = normalize_im(found_imt.group(1))
-    except ValueError as err:
-        raise HazardFileError(f"{path}: line 1: {err}") from None
-    rows = list(csv.reader(lines[1:]))
-    header = [h.strip() for h in rows[0]] if rows else []
-    poe_columns = [i for i, h in enumerate(header) if h.startswith("poe-")]
-    if not poe_columns:
-        raise HazardFileError(f"{path}: line 2: no poe-<level> columns")
-    if not 0 <= site < len(rows) - 1:
-        raise HazardFileError(f"{path}: site {site} not in the file ({len(rows) - 1} sites)")
-    row = rows[1 + site]
-    where = f"{path}: line {site + 3}"
-    levels = np.array([_float(header[i][4:], f"{path}: line 2: {header[i]}")
-                       for i in poe_columns])
-    poes = np.array([_float(row[i], f"{where}: {header[i]}") for i in poe_columns])
-    if np.any((poes < 0) | (poes > 1)):
-        raise HazardFileError(f"{where}: probabilities of exceedance must lie in [0, 1]")
-    keep = (poes > 0) & (poes < 1)  # P = 1: the rate is beyond what the file can say
-    factor = FORMAT_FACTOR[im_dimension(im)]
-    return _curve(im, levels[keep] * factor, rate_from_poe(poes[keep], investigation_time),
-                  f"{path} (OpenQuake, T = {investigation_time:g} yr)")
-
-
-def read_usgs_json(path, im=None, component="Total"):
-    """The curve of ``im`` (the first in the file if None) of a USGS hazard web service
-    response: ``response[i].metadata.imt.value`` (``PGA``, ``SA0P2``), ``metadata.xvalues``
-    (g, cm/s for PGV) and ``data[j].yvalues`` (annual frequency of exceedance) of the
-    ``component`` (``Total``)."""
-    path = Path(path)
-    try:
-        document = json.loads(path.read_text())
-        responses = document["response"]
-        if isinstance(responses, dict):
-            responses = [responses]
-        found = []
-        for response in responses:
-            meta = response["metadata"]
-            imt = meta["imt"]["value"] if isinstance(meta["imt"], dict) else meta["imt"]
-            found.append((normalize_im(imt), meta, response["data"]))
-    except (json.JSONDecodeError, KeyError, TypeError) as err:
-        raise HazardFileError(f"{path}: not a USGS hazard curve response ({err})") from None
-    except ValueError as err:
-        raise HazardFileError(f"{path}: {err}") from None
-    names = [f[0] for f in found]
-    if not found or (im is not None and im not in names):
-        raise HazardFileError(f"{path}: no curve of {im or 'any IM'} (found: "
-                              f"{', '.join(names) or 'none'})")
-    name, meta, data = found[names.index(im) if im is not None else 0]
-    series = {d.get("component"): d["yvalues"] for d in data}
-    if component not in series:
-        raise HazardFileError(f"{path}: {name}: no component {component!r} (found: "
-                              f"{', '.join(map(str, series))})")
-    levels = np.asarray(meta["xvalues"], dtype=float) * FORMAT_FACTOR[im_dimension(name)]
-    rates = np.asarray(series[component], dtype=float)
-    keep = rates > 0
-    return _curve(name, levels[keep], rates[keep], f"{path} (USGS, {component})")
-
-
-def read_columns(path, im, units, kind="annual_rate", investigation_time=None):
-    """Two columns ``im, annual_rate`` (or ``im, poe`` with ``investigation_time`` [yr]),
-    comma or white-space separated, ``#`` comments and a header line of names allowed; ``im``
-    in ``units`` (e.g. ``g``, ``m/s^2``, ``cm/s``)."""
-    from ..io.units import fixed_factor
-
-    path = Path(path)
-    try:
-        factor = fixed_factor(units, im_dimension(im))
-    except ValueError as err:
-        raise HazardFileError(f"{path}: units {units!r}: {err}") from None
-    if kind == "poe" and investigation_time is None:
-        raise HazardFileError(f"{path}: probabilities of exceedance need investigation_time")
-    values = []
-    for number, line in enumerate(path.read_text().splitlines(), 1):
-        text = line.split("#", 1)[0].strip()
-        if not text:
-            continue
-        cells = [c for c in re.split(r"[,\s;]+", text) if c]
-        if len(cells) != 2:
-            raise HazardFileError(f"{path}: line {number}: expected 2 columns, got {len(cells)}")
-        try:
-            values.append([float(c) for c in cells])
-        except ValueError:
-            if values:
-                raise HazardFileError(f"{path}: line {number}: not numbers: {text!r}") from None
-            continue  # a header line
-    if not values:
-        raise HazardFileError(f"{path}: no rows of numbers")
-    levels, second = np.array(values).T
-    if kind == "poe":
-        if np.any((second < 0) | (second > 1)):
-            raise HazardFileError(f"{path}: probabilities of exceedance must lie in [0, 1]")
-        keep = (second > 0) & (second < 1)
-        rates = rate_from_poe(second[keep], investigation_time)
-        levels = levels[keep]
-    else:
-        rates = second
-    return _curve(im, levels * factor, rates, f"{path}")
-
-
-def _curve(im, levels, rates, source):
-    return HazardCurve(im, levels, rates, source)
-
-
-def write_columns(path, curve):
-    """Write ``curve`` as two columns ``im, annual_rate`` in SI units (a header comment says
-    which), atomically."""
-    from ..io.files import replacing
-
-    with replacing(path) as tmp:
-        lines = [f"# {curve.im} [{curve.units}], annual rate of exceedance [1/yr]; "
-                 f"from {curve.source}", f"{curve.im},annual_rate"]
-        lines += [f"{x:.8g},{r:.8g}" for x, r in zip(curve.levels, curve.rates)]
-        Path(tmp).write_text("\n".join(lines) + "\n")
-    return Path(path)
-
-
-def write_openquake_csv(path, curve, investigation_time=50.0, lon=0.0, lat=0.0):
-    """Write ``curve`` as OpenQuake writes a hazard curve (probabilities of exceedance in
-    ``investigation_time``, levels in g or cm/s), atomically: for a check of the reader and
-    for OpenQuake's own tools."""
-    from ..io.files import replacing
-
-    factor = FORMAT_FACTOR[im_dimension(curve.im)]
-    poes = poe_from_rate(curve.rates, investigation_time)
-    header = ["lon", "lat", "depth"] + [f"poe-{x / factor:.8g}" for x in curve.levels]
-    with replacing(path) as tmp:
-        Path(tmp).write_text(
-            f"#,,,,\"generated_by='sweep.risk', kind='mean', investigation_time="
-            f"{investigation_time!r}, imt='{openquake_imt(curve.im)}'\"\n"
-            + ",".join(header) + "\n"
-            + ",".join([f"{lon:g}", f"{lat:g}", "0.0"] + [f"{p:.8e}" for p in poes]) + "\n")
-    return Path(path)

@@ -25,13 +25,31 @@ C_i = λ(max(a, μ)) − λ(b) when μ < b.  On a power law over all x, (1) is
 The probability in T years is 1 − exp(−λ_O T) (Poisson), the return period 1/λ_O.  The 95 %
 interval carries the fragility's bootstrap replicates of (ln θ, β) (``fit.LognormalFit``)
 through (1): percentiles of λ_O over them.  The contributions C_i, with the share above x_n,
-are the disaggregation of λ_O by IM level.
+are the disaggregation of λ_O by IM level.  When more than ``BEYOND_SHARE`` of λ_O comes from
+above x_n (or θ > x_n), or the estimate below x_1 exceeds it, the curve is too short for the
+fragility (:attr:`Risk.beyond_above`, :attr:`Risk.beyond_below`).
+
+**No overturning at any stripe** (0 of n_j at x_1 < … < x_m) identifies no fragility but
+bounds it.  With c the confidence, p = 1 − (1 − c)^(1/N) is the one-sided upper bound of a
+probability from 0 of N trials (Clopper & Pearson 1934).  A non-decreasing fragility is at
+least F(x_j) at every stripe above x_j, so with independent motions (synthetic, each its own
+seed) the 0 of N_j = Σ_(i ≥ j) n_i motions at x_j and above bound F(x_j) by p_j (N = N_j);
+with the same records at every stripe only the stripe's own n_j do (N = n_j).  The fragility
+is then at most q_j = min_(i ≥ j) p_i on (x_(j−1), x_j] (x_0 the curve's first level) and at
+most 1 above x_m, so that
+
+    λ_O ≤ λ_up = Σ_j q_j [λ(x_(j−1)) − λ(x_j)] + λ(x_m)                                    (3)
+
+a bound at confidence c: a fragility with λ_O > λ_up has F(x_i) > p_i at some stripe i, and
+0 overturned has then a chance of at most (1 − F(x_i))^N < 1 − c (:func:`none_overturned`).
 """
 from dataclasses import dataclass
 
 import numpy as np
 
 from .hazard_curve import HazardCurve, poe_from_rate
+
+BEYOND_SHARE = 0.05  # a share of λ_O from beyond the curve's ends that the report cautions of
 
 
 def _log_ndtr_difference(lower, upper):
@@ -121,12 +139,17 @@ def annual_rate(curve, log_theta, beta):
         tail_above(curve, log_theta, beta)
 
 
-def integrand(curve, x, log_theta, beta):
-    """F(x) |dλ/d ln x| = F(x) k_i λ(x) at ``x`` inside the curve (per unit ln x) [1/yr]."""
+def hazard_density(curve, x):
+    """|dλ/d ln x| = k_i λ(x) at ``x`` inside the curve (per unit ln x) [1/yr]."""
     x = np.asarray(x, dtype=float)
     segment = np.clip(np.searchsorted(curve.levels, x, side="right") - 1, 0,
                       curve.levels.size - 2)
-    return fragility_at(x, log_theta, beta) * curve.slopes()[segment] * curve.rate(x)
+    return curve.slopes()[segment] * curve.rate(x)
+
+
+def integrand(curve, x, log_theta, beta):
+    """F(x) |dλ/d ln x| = F(x) k_i λ(x) at ``x`` inside the curve (per unit ln x) [1/yr]."""
+    return fragility_at(x, log_theta, beta) * hazard_density(curve, x)
 
 
 @dataclass(frozen=True)
@@ -155,9 +178,16 @@ class Risk:
         The term above the curve's last level (included) and the estimate below its first
         level (not included), as shares of λ_O.
     median, beta : float
-        The fragility used (median in the curve's SI units).
+        The fragility used (median in the curve's SI units); NaN for a bound.
     replicates : int
         Bootstrap replicates that entered the intervals.
+    last_rate : float
+        λ(x_n), the rate of the shaking above the curve's last level [1/yr].
+    bound : str or None
+        Set when ``annual_rate`` and ``probability`` are one-sided upper bounds, not
+        estimates (:func:`none_overturned`): what they bound, in words.
+    staircase : tuple of ndarray or None
+        With ``bound``: the stripe levels and the q_j of the bounding fragility (3).
     """
 
     annual_rate: float
@@ -175,11 +205,39 @@ class Risk:
     median: float
     beta: float
     replicates: int = 0
+    last_rate: float = np.nan
+    bound: str = None
+    staircase: tuple = None
 
     @property
     def shares(self):
         """The contributions as shares of λ_O (summing to 1)."""
         return self.contributions / self.annual_rate
+
+    @property
+    def rate_at_most(self):
+        """λ_O if every shaking above the curve's last level overturned the body: the
+        most that the part above the curve can add [1/yr]."""
+        return self.annual_rate - self.contributions[-1] + self.last_rate
+
+    @property
+    def beyond_above(self):
+        """Whether the fragility reaches past the curve's last level: θ above it, or more
+        than ``BEYOND_SHARE`` of λ_O from above it (an estimate, not a bound)."""
+        return self.bound is None and (self.median > self.lower[-1]
+                                       or self.share_above > BEYOND_SHARE)
+
+    @property
+    def open_above(self):
+        """Whether the part above the curve's last level could add more than 1 % to λ_O
+        (the fragility there below 1)."""
+        return self.beyond_above and self.rate_at_most > 1.01 * self.annual_rate
+
+    @property
+    def beyond_below(self):
+        """Whether the estimate below the curve's first level (not included) exceeds
+        ``BEYOND_SHARE`` of λ_O."""
+        return self.share_below > BEYOND_SHARE
 
 
 def risk(curve, median, beta, years=50.0, replicates=None, confidence=0.95):
@@ -214,4 +272,46 @@ def risk(curve, median, beta, years=50.0, replicates=None, confidence=0.95):
                 1.0 / rate if rate > 0 else np.inf, rate_interval, probability_interval,
                 confidence, contributions, curve.levels.copy(),
                 np.append(curve.levels[1:], np.inf), share_above, share_below,
-                float(median), float(beta), count)
+                float(median), float(beta), count, float(curve.rates[-1]))
+
+
+def stripe_bounds(n, confidence=0.95, independent=True):
+    """q_j of (3): the one-sided upper bounds p_j = 1 − (1 − c)^(1/N_j) of P(O | x_j) from
+    0 of ``n`` overturned (N_j the motions at x_j and above when ``independent``, else n_j),
+    each lowered to the least of those above it."""
+    n = np.asarray(n, dtype=float)
+    trials = np.cumsum(n[::-1])[::-1] if independent else n
+    p = -np.expm1(np.log1p(-confidence) / trials)
+    return np.minimum.accumulate(p[::-1])[::-1]
+
+
+def bounding_fragility(x, staircase):
+    """The staircase (stripe levels, q_j) of (3) at ``x``: q_j on (x_(j−1), x_j], 1 above
+    the last stripe."""
+    levels, q = staircase
+    return np.append(q, 1.0)[np.searchsorted(levels, x, side="left")]
+
+
+def none_overturned(curve, levels, n, years=50.0, confidence=0.95, independent=True):
+    """:class:`Risk` whose rate and probability are the bounds (3) of a body that never
+    overturned: 0 of ``n`` at the stripe ``levels`` (ascending, inside the curve; stripes
+    with n = 0 left out), their motions ``independent`` or the same records at each.  The
+    contributions are those of the bounding staircase F ≤ q_j per segment of the curve
+    (steps at the curve's first level and at each stripe)."""
+    levels, n = np.asarray(levels, dtype=float), np.asarray(n, dtype=float)
+    levels, n = levels[n > 0], n[n > 0]
+    q = stripe_bounds(n, confidence, independent)
+    weights = np.diff(np.concatenate([[0.0], q, [1.0]]))  # rises of the staircase
+    steps = np.log(np.concatenate([curve.levels[:1], levels]))
+    pieces = np.column_stack([segment_contributions(curve, steps, np.zeros(steps.size)),
+                              tail_above(curve, steps, np.zeros(steps.size))])
+    contributions = weights @ pieces
+    rate = float(contributions.sum())
+    probability = float(poe_from_rate(rate, years))
+    motions = (f"{n[0]:g} motions at each stripe" if np.all(n == n[0]) else
+               f"{', '.join(f'{v:g}' for v in n)} motions at the stripes")
+    bound = f"none overturned in {motions}: one-sided {100 * confidence:g} % bound"
+    return Risk(rate, float(years), probability, 1.0 / rate, (0.0, rate), (0.0, probability),
+                confidence, contributions, curve.levels.copy(),
+                np.append(curve.levels[1:], np.inf), float(contributions[-1] / rate), np.nan,
+                np.nan, np.nan, 0, float(curve.rates[-1]), bound, (levels, q))

@@ -6,6 +6,7 @@ of a grid, and the results as JSON-ready dicts and a CF dataset (docs/risk.md).
 fragility, without simulating.  :func:`body_record` is the JSON of one body (the keys of
 docs/design.md §12), :func:`to_dataset` the netCDF dataset.  SI units.
 """
+from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,10 +27,15 @@ class RiskOutcome:
     """Everything a risk report says.
 
     ``fits`` and ``risks`` are object arrays of the body shape (``()`` for one body): a
-    ``fit.LognormalFit`` (None for a known fragility) and a ``risk.Risk`` (None where the
-    fit is not identifiable).  ``k``, ``n``: overturned and simulated motions per stripe and
-    body.  ``body_coords``: {dim: (SI values, attrs)}.  ``warnings``: every caution said
-    while it was computed (``path: message``), for the JSON and the dataset.
+    ``fit.LognormalFit`` (None for a known fragility) and a ``risk.Risk`` (its bound for a
+    body never overturned, None where the fit is otherwise not identifiable).  ``k``, ``n``:
+    overturned and simulated motions per stripe and body.  ``body_coords``: {dim: (SI
+    values, attrs)}.  ``warnings``: every caution said while it was computed (``path:
+    message``), for the JSON and the dataset.
+    ``description``: the scene's body, {name: SI value} (:func:`body_parameters`).
+    ``sides``: each side's overturnings and angles per body (:class:`StripeSides`), None
+    without stripes.  ``placement``: where the stripes' motions act, in words
+    (``stripes.placement``: the ground, or a building's floor), None without stripes.
     """
 
     curve: object
@@ -47,6 +53,9 @@ class RiskOutcome:
     name: str = "risk"
     site: str = None
     warnings: list = field(default_factory=list)
+    description: dict = field(default_factory=dict)
+    sides: object = None
+    placement: str = None
 
     @property
     def shape(self):
@@ -67,6 +76,42 @@ class RiskOutcome:
             out[index] = ", ".join(parts) or "body"
         return out
 
+    def names(self):
+        """A name per body for people, from its parameters: ``B 15 cm × H 60 cm (b/h 0.25),
+        μ 0.8`` (the scene's body with the grid's values); :meth:`labels` without a scene."""
+        if not self.description:
+            return self.labels()
+        out = np.empty(self.shape, dtype=object)
+        for index in np.ndindex(*self.shape):
+            values = {d: float(self.body_coords[d][0][i]) for d, i in zip(self.body_dims,
+                                                                           index)}
+            scene = {k: v for k, v in self.description.items()
+                     if not (k == "H" and "b_over_h" in values)}  # B/(b/h) sets H
+            out[index] = describe_body({**scene, **values})
+        return out
+
+    def fixed(self):
+        """The body's parameters that the grid does not vary, in words (``μ 0.8``)."""
+        varied = set(self.body_dims) | ({"H"} if "b_over_h" in self.body_dims else set())
+        return describe_body({k: v for k, v in self.description.items() if k not in varied})
+
+
+def describe_body(values):
+    """A body in words from {name: SI value} of ``B``, ``H``, ``b_over_h``, ``mu`` (those
+    given): ``B 15 cm × H 60 cm (b/h 0.25), μ 0.8``."""
+    breadth, height, ratio = (values.get(k) for k in ("B", "H", "b_over_h"))
+    if height is None and breadth is not None and ratio is not None:
+        height = breadth / ratio
+    if breadth is not None and height is not None:
+        parts = [f"B {100 * breadth:.3g} cm × H {100 * height:.3g} cm (b/h "
+                 f"{breadth / height:.3g})"]
+    else:
+        parts = [f"{k} {100 * v:.3g} cm" for k, v in (("B", breadth), ("H", height))
+                 if v is not None] + ([f"b/h {ratio:.3g}"] if ratio is not None else [])
+    if values.get("mu") is not None:
+        parts.append(f"μ {values['mu']:.3g}")
+    return ", ".join(parts)
+
 
 def _field(risks, name):
     out = np.full(risks.shape, np.nan)
@@ -81,7 +126,9 @@ def known(curve, median, beta, years, target=None, confidence=0.95, name="risk")
     risks = np.empty((), dtype=object)
     risks[()] = risk_integral.risk(curve, median, beta, years, confidence=confidence)
     fits = np.empty((), dtype=object)
-    return RiskOutcome(curve, years, target, confidence, fits, risks, name=name)
+    outcome = RiskOutcome(curve, years, target, confidence, fits, risks, name=name)
+    caution_ends(outcome)
+    return outcome
 
 
 def compute(spec, folder, say=None, median=None, beta=None):
@@ -99,6 +146,7 @@ def compute(spec, folder, say=None, median=None, beta=None):
     if median is not None:
         outcome = known(curve, median, beta, checked.years, **common)
         outcome.site = checked.site
+        outcome.description = body_parameters(checked.scene)
         return outcome
     entry = checked.stripes
     levels = risk_inputs.stripe_levels(entry)
@@ -130,6 +178,10 @@ def compute(spec, folder, say=None, median=None, beta=None):
             risks[index] = separated_risk(curve, levels, k[(slice(None),) + index],
                                           n[(slice(None),) + index], checked.years,
                                           checked.confidence)
+        elif not k[(slice(None),) + index].any() and n[(slice(None),) + index].any():
+            risks[index] = risk_integral.none_overturned(
+                curve, levels, n[(slice(None),) + index], checked.years, checked.confidence,
+                independent=entry.records is None)
     dims = stripe_analysis.body_dims(datasets[0])
     coords = {d: (np.asarray(datasets[0][d].values, dtype=float),
                   dict(datasets[0][d].attrs)) for d in dims}
@@ -137,8 +189,127 @@ def compute(spec, folder, say=None, median=None, beta=None):
     if model is not None:
         disaggregation = model.disaggregate(levels, risk_inputs.distance_bins(
             checked.hazard.source))
-    return RiskOutcome(curve, checked.years, checked.target, checked.confidence, fits, risks,
-                       dims, coords, plan, k, n, disaggregation, spec.name, checked.site)
+    outcome = RiskOutcome(curve, checked.years, checked.target, checked.confidence, fits,
+                          risks, dims, coords, plan, k, n, disaggregation, spec.name,
+                          checked.site, description=body_parameters(checked.scene),
+                          sides=stripe_sides(datasets),
+                          placement=stripe_analysis.placement(checked.scene))
+    caution_ends(outcome)
+    return outcome
+
+
+def body_parameters(scene):
+    """{name: SI value} of a risk file's ``scene``: its body's ``B`` and ``H`` and its
+    contact's ``mu``, those it gives; empty without a scene."""
+    from pydantic import ValidationError
+
+    from ..io.scene_schema import Body, Contact
+
+    out = {}
+    try:
+        body = Body.model_validate((scene or {}).get("body") or {})
+        out.update(B=body.B.to_si(), H=body.H.to_si())
+    except (ValidationError, ValueError):  # its problems are the scene's, said elsewhere
+        pass
+    try:
+        mu = Contact.model_validate((scene or {}).get("contact") or {}).mu
+    except (ValidationError, ValueError):
+        mu = None
+    if mu is not None:
+        out["mu"] = float(mu)
+    return out
+
+
+def caution_ends(outcome):
+    """Caution of each body whose fragility reaches past the hazard curve's ends
+    (``Risk.beyond_above``, ``Risk.beyond_below``) and of each whose rate is only bounded
+    (none overturned): what the numbers then mean, and what to give to do better."""
+    from ..io.imt import display_scale
+    from ..io.problems import caution
+
+    curve = outcome.curve
+    factor, unit = display_scale(curve.units)
+    names = outcome.names()
+
+    def level(x):
+        return f"{x / factor:.3g} {unit}"
+
+    for index in np.ndindex(*outcome.shape):
+        r = outcome.risks[index]
+        if r is None:
+            continue
+        who = f"{names[index]}: " if outcome.shape else ""
+        if r.bound is not None:
+            caution(f"{who}{_bound_said(outcome, index, level)}", "stripes")
+            continue
+        if r.beyond_above:
+            caution(f"{who}{_above_said(r, curve, level)}", "hazard")
+        if r.beyond_below:
+            caution(f"{who}an estimated {100 * r.share_below:.3g} % more than the rate of "
+                    f"overturning would come from shaking below the hazard curve's first "
+                    f"level, {level(curve.levels[0])}, not included: give a hazard curve "
+                    "from lower levels", "hazard")
+
+
+def _above_said(r, curve, level):
+    """The caution of a fragility reaching past the curve's last level: the share from
+    above it, the rate between the one computed and the most it could be, what to give."""
+    last = curve.levels[-1]
+    at_last = float(risk_integral.fragility_at(last, np.log(r.median), r.beta))
+    reach = r.median * np.exp(2.0 * r.beta)  # where the fragility is 0.98
+    median = f", below the fragility's median {level(r.median)}" if r.median > last else ""
+    said = (f"{100 * r.share_above:.3g} % of the rate of overturning comes from shaking above "
+            f"the hazard curve's last level, {level(last)}{median}, counted with the "
+            f"fragility there ({at_last:.2g})")
+    if not r.open_above:
+        return (f"{said}: nearly all that shaking overturns the body, so the rate "
+                f"{r.annual_rate:.3g}/yr is within 1 % of the most it could be")
+    return (f"{said}: the rate is between {r.annual_rate:.3g} and {r.rate_at_most:.3g}/yr, the "
+            "most if all that shaking overturned the body; give a hazard curve to higher "
+            "levels" + (f" (to {level(reach)}, where the fragility is 0.98)" if reach > last
+                        else ""))
+
+
+def _bound_said(outcome, index, level):
+    """The caution of a body that never overturned: its bound, and the share of it from
+    below the lowest stripe, where the stripes say nothing."""
+    r, curve = outcome.risks[index], outcome.curve
+    levels, q = r.staircase
+    below = q[0] * (curve.rates[0] - float(curve.rate(levels[0]))) / r.annual_rate
+    return (f"none overturned at any stripe: the rate of overturning is at most "
+            f"{r.annual_rate:.3g}/yr ({r.bound.split(': ')[-1]}), from P(overturn) ≤ "
+            f"{q[0]:.2g} at the lowest stripe to {q[-1]:.2g} at the highest; more motions "
+            f"lower it, and so do stripes below {level(levels[0])}, the lowest, whence "
+            f"{100 * below:.3g} % of it comes")
+
+
+SIDE_VARIABLES = ("overturn_direction", "alpha_1", "alpha_2")  # of a stripe's dataset
+StripeSides = namedtuple("StripeSides", "left right alpha_1 alpha_2")
+StripeSides.__doc__ = """Each side of the bodies of the stripes (docs/bodies.md): ``left`` and
+``right``, the motions that overturned the body to the left (−x, about corner 1:
+``overturn_direction`` +1) and to the right, per stripe and body (the shape of
+``RiskOutcome.k``); ``alpha_1``, ``alpha_2`` [rad] per body (equal: G in the middle)."""
+
+
+def stripe_sides(datasets):
+    """The :class:`StripeSides` of the stripes' datasets (``stripes.run``); None for datasets
+    reused from a version that did not write each side."""
+    def motions_first(ds, name):
+        return ds[name].transpose(stripe_analysis.member_dim(ds), ...).values
+
+    if any(name not in ds for ds in datasets for name in SIDE_VARIABLES):
+        return None
+    overturned = stripe_analysis.outcomes(datasets) == 1
+    direction = np.array([motions_first(ds, "overturn_direction") for ds in datasets])
+    angles = (motions_first(datasets[0], name)[0] for name in ("alpha_1", "alpha_2"))
+    return StripeSides((overturned & (direction == 1)).sum(axis=1),
+                       (overturned & (direction == -1)).sum(axis=1), *angles)
+
+
+def asymmetric(outcome, index=()):
+    """True when body ``index`` of ``outcome`` has G off the middle (its angles differ)."""
+    sides = outcome.sides
+    return sides is not None and sides.alpha_1[index] != sides.alpha_2[index]
 
 
 def _record_sources(names, folder):
@@ -179,13 +350,28 @@ def _interval(pair):
     return [None if not np.isfinite(v) else float(v) for v in pair]
 
 
+def _side_record(outcome, index):
+    """``overturned_left``, ``overturned_right`` per stripe of body ``index``, for the JSON
+    (nothing without :class:`StripeSides`)."""
+    sides = outcome.sides
+    along = (slice(None),) + index
+    return {} if sides is None else {"overturned_left": sides.left[along].tolist(),
+                                     "overturned_right": sides.right[along].tolist()}
+
+
 def body_record(outcome, index=()):
     """The JSON of one body: ``annual_rate``, ``probability``, ``years``, ``return_period``,
-    ``interval``, ``fragility``, ``deaggregation`` (docs/design.md §12)."""
+    ``interval``, ``fragility``, ``deaggregation`` (docs/design.md §12); for a body that never
+    overturned, ``annual_rate``, ``probability`` and ``return_period`` are null and
+    ``annual_rate_upper_bound``, ``probability_upper_bound`` and ``bound`` say the bound,
+    on which ``meets_target`` is judged."""
     r, f = outcome.risks[index], outcome.fits[index]
     record = {"body": outcome.labels()[index]}
     record.update({d: float(outcome.body_coords[d][0][i])
                    for d, i in zip(outcome.body_dims, index)})
+    if outcome.sides is not None:  # each side's angle: G off the middle when they differ
+        record.update(alpha_1=float(outcome.sides.alpha_1[index]),
+                      alpha_2=float(outcome.sides.alpha_2[index]))
     if f is None:
         fragility = {"median": r.median, "beta": r.beta, "status": STATUS_KNOWN}
     else:
@@ -198,6 +384,7 @@ def body_record(outcome, index=()):
                                  **({"records": outcome.stripes[0].distances}
                                     if outcome.stripes[0].seeds is None else {}),
                                  "overturned": outcome.k[(slice(None),) + index].tolist(),
+                                 **_side_record(outcome, index),
                                  "motions": outcome.n[(slice(None),) + index].tolist()}}
     fragility["units"] = outcome.curve.units
     record["fragility"] = fragility
@@ -217,7 +404,12 @@ def body_record(outcome, index=()):
         deaggregation={"im_lower": r.lower.tolist(),
                        "im_upper": [None if not np.isfinite(u) else u for u in r.upper],
                        "share": r.shares.tolist(), "share_above_curve": r.share_above,
-                       "share_below_curve_not_included": r.share_below})
+                       "share_below_curve_not_included": r.share_below,
+                       "rate_above_curve_at_most": r.last_rate})
+    if r.bound is not None:
+        record.update(annual_rate=None, probability=None, return_period=None,
+                      annual_rate_upper_bound=r.annual_rate,
+                      probability_upper_bound=r.probability, bound=r.bound)
     return record
 
 
@@ -239,7 +431,8 @@ def report(outcome):
     return {"name": outcome.name, "site": outcome.site, "im": outcome.curve.im,
             "years": outcome.years, "target": outcome.target,
             "bodies": [body_record(outcome, index) for index in np.ndindex(*outcome.shape)],
-            "hazard": hazard_record(outcome), "warnings": list(outcome.warnings)}
+            "hazard": hazard_record(outcome), "placement": outcome.placement,
+            "warnings": list(outcome.warnings)}
 
 
 SEGMENT, LEVEL, STRIPE = "segment", "hazard_level", "stripe"
@@ -247,6 +440,22 @@ SEGMENT, LEVEL, STRIPE = "segment", "hazard_level", "stripe"
 
 def _variable(dims, data, units, long_name, **extra):
     return (dims, np.asarray(data), {"units": units, "long_name": long_name, **extra})
+
+
+def _side_variables(sides, dims):
+    """The dataset's variables of :class:`StripeSides`: per stripe and body, the motions that
+    overturned the body to each side; per body, each side's angle."""
+    return {
+        **{f"stripe_overturned_{side}": _variable(
+            (STRIPE,) + dims, counts, "1", f"motions that overturned the body to the {side}",
+            comment=f"{towards}: overturn_direction {sign}1") for side, counts, towards, sign
+           in (("left", sides.left, "-x, about corner 1", "+"),
+               ("right", sides.right, "+x, about corner 2", "-"))},
+        **{name: _variable(dims, angle, "rad", f"angle at G between the vertical and corner "
+                                               f"{corner} of the body",
+                           comment="alpha_1 = alpha_2: G in the middle of the base")
+           for name, angle, corner in (("alpha_1", sides.alpha_1, "1 (left, -x)"),
+                                       ("alpha_2", sides.alpha_2, "2 (right, +x)"))}}
 
 
 def to_dataset(outcome, history=""):
@@ -264,6 +473,7 @@ def to_dataset(outcome, history=""):
         "probability_lower", "probability_upper", "return_period", "theta", "theta_lower",
         "theta_upper", "beta", "beta_lower", "beta_upper", "share_above", "share_below")}
     contribution = np.full(shape + (segments,), np.nan)
+    bounded = np.zeros(shape, dtype=np.int8)
     for index in np.ndindex(*shape):
         r, f = outcome.risks[index], outcome.fits[index]
         if f is not None:
@@ -282,6 +492,10 @@ def to_dataset(outcome, history=""):
         rows["return_period"][index] = r.return_period
         rows["share_above"][index], rows["share_below"][index] = r.share_above, r.share_below
         contribution[index] = r.contributions
+        if r.bound is not None:  # the one-sided bounds only, in *_upper
+            bounded[index] = 1
+            for name in ("annual_rate", "probability", "return_period"):
+                rows[name][index] = np.nan
     years = f"{outcome.years:g} years"
     data = {
         "annual_rate": _variable(dims, rows["annual_rate"], "yr-1",
@@ -322,6 +536,13 @@ def to_dataset(outcome, history=""):
                                           "above the curve"),
         "hazard_rate": _variable((LEVEL,), curve.rates, "yr-1",
                                  f"annual rate of exceedance of {curve.im}"),
+        "none_overturned": _variable(
+            dims, bounded, "1", "no motion overturned the body at any stripe",
+            flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="estimated bounded",
+            comment="bounded: annual_rate, probability and return_period are not estimated; "
+                    f"annual_rate_upper and probability_upper are one-sided "
+                    f"{100 * outcome.confidence:g} % bounds (0 of n at each stripe), "
+                    "contribution that of the bound"),
     }
     coords = {d: (d, outcome.body_coords[d][0], outcome.body_coords[d][1]) for d in dims}
     coords[LEVEL] = (LEVEL, curve.levels, {"units": units, "long_name": f"{im_name} level"})
@@ -336,6 +557,8 @@ def to_dataset(outcome, history=""):
                                               "motions that overturned the body")
         data["stripe_motions"] = _variable((STRIPE,) + dims, outcome.n, "1",
                                            "motions simulated (failed left out)")
+        if outcome.sides is not None:
+            data.update(_side_variables(outcome.sides, dims))
         if outcome.disaggregation is not None:
             d = outcome.disaggregation
             data["stripe_mean_magnitude"] = _variable(
@@ -347,6 +570,7 @@ def to_dataset(outcome, history=""):
         "Conventions": cf.CONVENTIONS, "title": f"risk of overturning: {outcome.name}",
         "source": f"{cf.PACKAGE} {__version__} (sweep.risk)",
         "hazard": curve.source, "intensity_measure": curve.im, "years": outcome.years,
+        **({"placement": outcome.placement} if outcome.placement else {}),
         "confidence": outcome.confidence,
         "history": history,
         "references": "Cornell et al. (2002) J. Struct. Eng. 128; Jalayer & Cornell (2009) "

@@ -15,6 +15,11 @@ noise.
 A user's records (``stripes.records``) are the motions of every stripe instead, each scaled
 to the level (the same records at every level, as in Baker 2015's multiple stripes).
 
+A scene whose horizontal motion is a building's floor (``kind: floor``, docs/floors.md) keeps
+its building: the stripe's motion is the floor's ``ground``, scaled at the ground to the level
+of the hazard's IM, and the axes of the motions set the ground's keys
+(``excitation.horizontal.ground.seed``, ``.magnitude``, ``.distance``, ``.name`` or ``.path``).
+
 Each stripe is an ordinary study (``<folder>/<name>_stripe<j>.yaml`` and ``.nc``): grid = the
 body axes of the risk map, if any, × the motions (a zip of ``seed``, magnitude and distance),
 run through the runner (``runner.launch.run_file``, as ``python -m sweep.run`` runs it; a
@@ -28,9 +33,10 @@ import numpy as np
 from . import fit as fitting
 
 MEMBER = "member"  # the zip dimension of a stripe's motions
-MEMBER_DIMS = (MEMBER, "seed", "record")  # the dimension of the motions, whichever it is
-MAGNITUDE_AXIS = "excitation.horizontal.magnitude"
-DISTANCE_AXIS = "excitation.horizontal.distance"
+HORIZONTAL = "excitation.horizontal."  # the keys of the stripe's motion on the ground
+GROUND = "excitation.horizontal.ground."  # ... under a building's floor
+# the study axes of the motions (a dimension of its own when alone; else zipped as MEMBER)
+MOTION_AXES = ("seed", "record", *(GROUND + key for key in ("seed", "name", "path")))
 MAGNITUDE_DIGITS = 4  # decimals of a drawn magnitude
 DISTANCE_STEP = 1.0  # m: drawn distances are rounded to this
 
@@ -95,40 +101,80 @@ def scaling(im, level):
     return {"pga": f"{level!r} m/s^2"}, f"PGA {level:.4g} m/s^2"
 
 
+def _floor(scene):
+    """True when the ``scene``'s horizontal motion is a building's floor (``kind: floor``)."""
+    horizontal = ((scene or {}).get("excitation") or {}).get("horizontal")
+    return isinstance(horizontal, dict) and horizontal.get("kind") == "floor"
+
+
+def _placed(scene, motion):
+    """The base ``scene`` (body, contact, solver) with the stripe's horizontal ``motion``: the
+    ground of its building's floor, or the horizontal motion itself."""
+    placed = {k: v for k, v in (scene or {}).items() if k != "excitation"}
+    if _floor(scene):
+        motion = {**scene["excitation"]["horizontal"], "ground": motion}
+    placed["excitation"] = {"horizontal": motion}
+    return placed
+
+
+def _axis(scene, key):
+    """The study axis that sets the key ``key`` of the stripe's motion: ``seed``, a dotted
+    path below the horizontal motion, or below a floor's ground."""
+    if _floor(scene):
+        return GROUND + key
+    return key if key == "seed" else HORIZONTAL + key
+
+
+def placement(scene):
+    """Where the stripes' motions act, in words: at the ground under the body, or as the
+    ground of the building whose floor the body stands on (its modes' keys)."""
+    if not _floor(scene):
+        return "the ground under the body"
+    building = scene["excitation"]["horizontal"].get("building") or {}
+    keys = ", ".join(f"{k} {v}" for k, v in building.items())
+    return ("the ground of a building whose floor the body stands on"
+            + (f" ({keys})" if keys else ""))
+
+
+def _under(scene):
+    """``under a building's floor`` in a stripe's title when the motions are a floor's ground."""
+    return " under a building's floor" if _floor(scene) else ""
+
+
 def _record_study(stripe, scene, grid, name, output, im):
     from ..io import records
 
     first = stripe.distances[0]
     scaled, said = scaling(im, stripe.level)
-    excitation = {"kind": "record", **({"name": first} if first in records.NAMES
-                                       else {"path": first}), **scaled}
-    scene = {k: v for k, v in (scene or {}).items() if k != "excitation"}
-    scene["excitation"] = {"horizontal": excitation}
+    source = "name" if first in records.NAMES else "path"
+    excitation = {"kind": "record", source: first, **scaled}
+    axis = _axis(scene, source) if _floor(scene) else "record"
     return {"name": name,
-            "title": f"stripe at {said}: {len(stripe.distances)} records (sweep.risk)",
-            "scene": scene, "grid": {**(grid or {}), "record": list(stripe.distances)},
-            "output": str(output)}
+            "title": f"stripe at {said}: {len(stripe.distances)} records{_under(scene)} "
+                     "(sweep.risk)",
+            "scene": _placed(scene, excitation),
+            "grid": {**(grid or {}), axis: list(stripe.distances)}, "output": str(output)}
 
 
 def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003", im="pga"):
-    """The study of one stripe: the base ``scene`` (body, contact, solver), a synthetic
-    horizontal motion scaled to the stripe's level of ``im`` (or the records of a
-    :func:`record_plan`); grid = ``grid`` (body axes) × the motions."""
+    """The study of one stripe: the base ``scene`` (body, contact, solver, and a building's
+    floor if it has one), a synthetic horizontal motion scaled to the stripe's level of ``im``
+    (or the records of a :func:`record_plan`), on the ground or as the floor's ground;
+    grid = ``grid`` (body axes) × the motions."""
     if stripe.seeds is None:
         return _record_study(stripe, scene, grid, name, output, im)
     scaled, said = scaling(im, stripe.level)
     first = {"kind": "synthetic", "model": motion_model, "magnitude": stripe.magnitudes[0],
              "distance": stripe.distances[0], "vs30": vs30, "seed": stripe.seeds[0], **scaled}
-    scene = {k: v for k, v in (scene or {}).items() if k != "excitation"}
-    scene["excitation"] = {"horizontal": first}
-    axes = {"seed": list(stripe.seeds)}
-    if len(set(stripe.magnitudes)) > 1:
-        axes[MAGNITUDE_AXIS] = list(stripe.magnitudes)
-    if len(set(stripe.distances)) > 1:
-        axes[DISTANCE_AXIS] = list(stripe.distances)
+    axes = {_axis(scene, "seed"): list(stripe.seeds)}
+    for key, values in (("magnitude", stripe.magnitudes), ("distance", stripe.distances)):
+        if len(set(values)) > 1:
+            axes[_axis(scene, key)] = list(values)
     study = {"name": name,
-             "title": f"stripe at {said}: {len(stripe.seeds)} synthetic motions (sweep.risk)",
-             "scene": scene, "grid": {**(grid or {}), **axes}, "output": str(output)}
+             "title": f"stripe at {said}: {len(stripe.seeds)} synthetic motions"
+                      f"{_under(scene)} (sweep.risk)",
+             "scene": _placed(scene, first), "grid": {**(grid or {}), **axes},
+             "output": str(output)}
     if len(axes) > 1:
         study["zip"] = {MEMBER: list(axes)}
     return study
@@ -172,20 +218,24 @@ def run(paths, say=None):
     return datasets
 
 
+def member_dim(ds):
+    """The dimension of a stripe dataset's motions: the zip of their axes, or the dimension
+    of the one axis that varies (its coordinate's ``study_axis``)."""
+    return next(d for d in ds["overturned"].dims if d == MEMBER or (
+        d in ds.coords and ds[d].attrs.get("study_axis", d) in MOTION_AXES))
+
+
 def body_dims(ds):
     """The dimensions of a stripe dataset that are bodies (not the motions)."""
-    return [d for d in ds["overturned"].dims if d not in MEMBER_DIMS]
+    member = member_dim(ds)
+    return [d for d in ds["overturned"].dims if d != member]
 
 
 def outcomes(datasets):
     """Per stripe, the outcome of every motion and body: overturned (1), standing (0) or
     failed (−1), shape (stripes, motions) + body shape, the motions first."""
-    out = []
-    for ds in datasets:
-        over = ds["overturned"]
-        member = next(d for d in MEMBER_DIMS if d in over.dims)
-        out.append(over.transpose(member, ...).values)
-    return np.array(out)
+    return np.array([ds["overturned"].transpose(member_dim(ds), ...).values
+                     for ds in datasets])
 
 
 def counts(datasets):

@@ -30,21 +30,23 @@ IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
 PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file was read
 
 Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS
-                    + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY))
+                    + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY, "on_floor"))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
 ``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), the body:
 breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad] (the
 smaller side's with G off the middle), the ``body`` in both forms (``bodies.describe``),
 ``overturn_towards``: the way the body fell, ``"-x"`` (to the left, ``overturn_direction``
-+1) or ``"+x"``, None when it stands (``verdict.fall_side``), and the ``provenance`` of each
-floor component that is a record (``records.floor_provenance``)."""
++1) or ``"+x"``, None when it stands (``verdict.fall_side``), the ``provenance`` of each
+floor component that is a record (``records.floor_provenance``), and ``on_floor``: True when
+the horizontal motion is a building's floor (``kind: floor``; its peaks are the floor's)."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
     """Run one scene (path or dict, units as in scene files) and return a :data:`Result`.
 
     With ``history=True`` the result's ``history`` is an ``xarray.Dataset`` sampled every
-    ``solver.dt_out`` seconds (its ``source`` attribute names the scene file, if any).
+    ``solver.dt_out`` seconds (its ``source`` attribute names the scene file, if any, and
+    ``body_form`` how the body was given: ``rectangle`` or ``rock``).
     The result lists the first ``max_log`` impacts and counts them all.
 
     Values that are likely not what was meant (``B: 30``, a bare number in m) are warned of
@@ -68,12 +70,14 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     ran = run_scene(resolved, history=history, max_log=max_log)
     alpha = math.atan2(B, H) if body["G"] is None else float(slenderness(B, H, body["G"]))
     result = Result(*ran, *motion[:3], B, H, alpha, describe(B, H, body["G"], body["i_g"]),
-                    fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]))
+                    fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]),
+                    checked.excitation.horizontal.kind == "floor")
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
         result = result._replace(history=history_dataset(result.history, resolved, source,
                                                          result))
+        result.history.attrs["body_form"] = checked.body.form  # how the plots draw it
     return result
 
 
@@ -90,8 +94,10 @@ def _check_history(resolved, source):
 
 def summary(result):
     """Two lines: what the body did (``verdict.verdict``), then the end status with its
-    message, the peaks of the horizontal floor motion and the CPU time."""
-    floor = (f"floor PGA {result.pga / G:.3g} g, PGV {result.pgv * 100:.3g} cm/s"
+    message, the peaks of the horizontal motion (``floor PGA`` on a building's floor, ``PGA``
+    on the ground) and the CPU time."""
+    where = "floor " if result.on_floor else ""
+    floor = (f"{where}PGA {result.pga / G:.3g} g, PGV {result.pgv * 100:.3g} cm/s"
              if result.pga > 0 else "horizontal floor still")
     return (f"{verdict(result._asdict())}\n{result.status}: {result.message}; {floor}; "
             f"cpu {result.cpu_s * 1e3:.2f} ms")

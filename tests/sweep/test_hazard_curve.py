@@ -6,7 +6,9 @@ import math
 import numpy as np
 import pytest
 
+from sweep.io.imt import normalize_im
 from sweep.probability import hazard_curve as hc
+from sweep.probability import hazard_files as hf
 
 G = 9.80665
 
@@ -17,7 +19,7 @@ def test_openquake_csv_levels_in_g_and_poe_to_rate(tmp_path):
                     "checksum=1, kind='mean', investigation_time=50.0, imt='PGA'\"\n"
                     "lon,lat,depth,poe-0.05,poe-0.1,poe-0.2,poe-0.4,poe-0.8\n"
                     "10.0,45.0,0.0,1.0,0.5,0.1,0.01,0.0\n")
-    curve = hc.read_openquake_csv(path)
+    curve = hf.read_openquake_csv(path)
     assert curve.im == "pga"
     np.testing.assert_allclose(curve.levels, [0.1 * G, 0.2 * G, 0.4 * G])  # P = 1, P = 0 dropped
     np.testing.assert_allclose(curve.rates, [math.log(2) / 50, -math.log(0.9) / 50,
@@ -27,7 +29,7 @@ def test_openquake_csv_levels_in_g_and_poe_to_rate(tmp_path):
 def test_openquake_round_trip(tmp_path):
     levels = np.geomspace(0.5, 20.0, 12)
     curve = hc.HazardCurve("sa(0.3)", levels, 1e-2 * (levels / 0.5) ** -2.2)
-    back = hc.read_openquake_csv(hc.write_openquake_csv(tmp_path / "c.csv", curve, 50.0))
+    back = hf.read_openquake_csv(hf.write_openquake_csv(tmp_path / "c.csv", curve, 50.0))
     assert back.im == "sa(0.3)"
     np.testing.assert_allclose(back.levels, curve.levels, rtol=1e-7)
     np.testing.assert_allclose(back.rates, curve.rates, rtol=1e-7)
@@ -41,11 +43,11 @@ def test_usgs_json_total_component_pgv_in_cm_s(tmp_path):
         {"metadata": {"imt": {"value": "PGV"}, "xvalues": [5.0, 10.0, 20.0]},
          "data": [{"component": "Grid", "yvalues": [1.0, 1.0, 1.0]},
                   {"component": "Total", "yvalues": [2e-2, 4e-3, 5e-4]}]}]}))
-    curve = hc.read_usgs_json(path, "pgv")
+    curve = hf.read_usgs_json(path, "pgv")
     np.testing.assert_allclose(curve.levels, [0.05, 0.1, 0.2])
     np.testing.assert_allclose(curve.rates, [2e-2, 4e-3, 5e-4])
-    assert hc.read_usgs_json(path).im == "pga"
-    assert hc.normalize_im("SA0P2") == "sa(0.2)"
+    assert hf.read_usgs_json(path).im == "pga"
+    assert normalize_im("SA0P2") == "sa(0.2)"
 
 
 def test_two_columns_poe_and_rates_agree(tmp_path):
@@ -54,8 +56,8 @@ def test_two_columns_poe_and_rates_agree(tmp_path):
     poe = hc.poe_from_rate(rates, 50.0)
     (tmp_path / "p.txt").write_text("".join(f"{x} {float(p)!r}\n"
                                             for x, p in zip([50, 100, 300], poe)))
-    a = hc.read_columns(tmp_path / "r.txt", "pga", "gal")
-    b = hc.read_columns(tmp_path / "p.txt", "pga", "cm/s^2", "poe", 50.0)
+    a = hf.read_columns(tmp_path / "r.txt", "pga", "gal")
+    b = hf.read_columns(tmp_path / "p.txt", "pga", "cm/s^2", "poe", 50.0)
     np.testing.assert_allclose(a.levels, [0.5, 1.0, 3.0])
     np.testing.assert_allclose(b.rates, a.rates, rtol=1e-12)
 

@@ -11,13 +11,7 @@ import yaml
 from sweep.probability import nrml
 from sweep.risk import main
 
-G = 9.80665
-K0, K = 2e-4, 2.8  # λ(x) = K0 x^-K, x in m/s²
-
-SOURCE = {"model": "BSSA14", "im": "pga", "vs30": "760 m/s",
-          "levels": {"start": "0.02 g", "stop": "2.5 g", "num": 25},
-          "sources": [{"kind": "point", "distance": "10 km", "depth": "8 km",
-                       "recurrence": {"rate": 0.02, "m_min": 5.5, "m_max": 7.5}}]}
+from risk_cases import G, K, K0, SOURCE
 
 
 def _curve_file(tmp_path, levels_g, rates):
@@ -172,7 +166,8 @@ def test_records_take_no_scenario(tmp_path, capsys):
 def test_openquake_curve_on_the_command_line(tmp_path, capsys):
     """The format is found from the file; a P in 50 years and the same curve as rates give
     the same rate of overturning."""
-    from sweep.probability.hazard_curve import HazardCurve, write_openquake_csv
+    from sweep.probability.hazard_curve import HazardCurve
+    from sweep.probability.hazard_files import write_openquake_csv
 
     levels = np.geomspace(0.05, 100.0, 120)
     write_openquake_csv(tmp_path / "hazard_curve-mean-PGA_0.csv",
@@ -188,7 +183,8 @@ def test_openquake_curve_on_the_command_line(tmp_path, capsys):
     (["--median", "30 cm/s"], "--median"),
 ])
 def test_command_line_mismatches_are_refused(tmp_path, capsys, arguments, line):
-    from sweep.probability.hazard_curve import HazardCurve, write_openquake_csv
+    from sweep.probability.hazard_curve import HazardCurve
+    from sweep.probability.hazard_files import write_openquake_csv
 
     path = write_openquake_csv(tmp_path / "c.csv", HazardCurve("pga", [1.0, 2.0], [1e-2, 1e-3]))
     options = {"--median": "4 m/s^2", "--beta": "0.4"}
