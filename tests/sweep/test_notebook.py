@@ -1,5 +1,5 @@
 """studies/explore.ipynb, the tutorial: it runs top to bottom in the project's kernel, prints
-what its text says, reads flags by name, and is stored with its outputs.
+what its text says, reads flags by name, and is stored without its outputs.
 
 The notebook is executed with nbclient from a copy in a temporary folder, which is also its
 working folder: the record file it writes goes to a temporary folder of its own, never beside
@@ -22,7 +22,7 @@ NOTEBOOK = Path(__file__).resolve().parents[2] / "studies" / "explore.ipynb"
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FIGURES = 6         # history, scene, line at 2 Hz, xarray map, package map, fragility
 STUDY_CELLS = 17 * 12 * 2  # amplitude x frequency x b_over_h of section 3
-MAX_BYTES = 1_500_000  # the stored notebook, images included, reads quickly on GitHub
+MAX_BYTES = 50_000  # the stored notebook: its source, without outputs
 CELL_TIMEOUT = 300  # s; the whole notebook takes about 10 s once the kernel is compiled
 PREFIX_TAG = "test_prefix"
 MOTION_TAG = "test_motion_file"
@@ -154,13 +154,11 @@ def test_reads_flags_by_name_and_shows_no_internals():
     assert "kernel_prefix" not in source and "sys.prefix" not in source
 
 
-def test_stored_with_its_outputs():
-    # what GitHub shows: every cell run in order, outputs saved, no errors or warnings, small
+def test_stored_without_outputs():
+    # what a clone holds: the source alone (outputs stripped, no execution counts), small;
+    # the tests above run it
     assert NOTEBOOK.stat().st_size < MAX_BYTES
     nb = nbformat.read(NOTEBOOK, as_version=4)
     cells = _code_cells(nb)
-    assert [cell.execution_count for cell in cells] == list(range(1, len(cells) + 1))
-    outputs = [out for cell in cells for out in cell.get("outputs", [])]
-    assert not [out for out in outputs if out.get("output_type") == "error"
-                or out.get("name") == "stderr"]
-    assert len(_pngs(nb)) == FIGURES
+    assert cells and all(cell.execution_count is None and not cell.get("outputs")
+                         for cell in cells)
