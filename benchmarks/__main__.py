@@ -19,7 +19,8 @@ from pathlib import Path
 
 from .markdown import table, write_text
 
-SECTIONS = ("headline", "startup", "work_precision", "throughput", "stability", "refine")
+SECTIONS = ("headline", "startup", "cells", "work_precision", "throughput", "stability",
+            "refine")
 OUTPUT = Path("results/bench.md")
 FIGURE = Path("figures/bench_work_precision.png")
 

@@ -5,7 +5,7 @@ The map is ``sweep_map.yaml`` with 400 amplitude levels (10,000 sweeps of 60 s),
 ensemble ``studies/fragility_synthetic.yaml`` (1,920 synthetic motions scaled in PGA).  Each
 runs three times, compile and cache loading left out of the clock: on every CPU core (a
 process pool over chunks of ``kernels.api.run_cells``), on the GPU
-(``kernels.cuda_batch.run_cells``), and on every CPU core again with the kernel compiled with
+(``kernels.gpu.run_cells``), and on every CPU core again with the kernel compiled with
 floating-point contraction (``KERNEL_CONTRACT=1``, ``kernels._jit``).  The last is the
 yardstick: GPU compilers fuse a*b + c into one rounding, so the GPU's overturning times may
 differ from the CPU's by as much as the CPU's own do when only that changes (chaotic rocking
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from kernels import api, codes
+from kernels import api, codes, gpu as door
 
 from .markdown import table, write_text
 
@@ -83,10 +83,9 @@ def on_cpu(rows, rec, contract=False):
 
 def on_gpu(rows, rec):
     """(results, wall [s]) of the rows on the GPU, after a launch that compiles."""
-    from kernels import cuda_batch
-    cuda_batch.run_cells(rows[:1], rec)
+    door.run_cells(rows[:1], rec)
     t0 = time.perf_counter()
-    results = cuda_batch.run_cells(rows, rec)
+    results = door.run_cells(rows, rec)
     return results, time.perf_counter() - t0
 
 
@@ -151,7 +150,7 @@ def main(argv=None):
     parser.add_argument("-o", "--output", type=Path, default=OUTPUT,
                         help="report file (default %(default)s)")
     args = parser.parse_args(argv)
-    why = api.cuda_unavailable()
+    why = door.unavailable()
     if why is not None:
         print(f"benchmarks.gpu: needs an NVIDIA GPU and numba-cuda: {why}; nothing was run",
               file=sys.stderr)

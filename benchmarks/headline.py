@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from kernels import api
+from kernels import gpu as door
 
 from . import floor, gpu, scaling
 from .markdown import Section, ms, table
@@ -51,7 +51,7 @@ def floor_cpu_per_cell(study):
 
 def _gpu_row(path):
     """The GPU's row: cells/s of the kernel alone, or why there is none."""
-    why = api.cuda_unavailable()
+    why = door.unavailable()
     if why is not None:
         return ["GPU", "no GPU on this machine" if not list(Path("/dev").glob("nvidia[0-9]*"))
                 else f"not run: {why}", "–"]

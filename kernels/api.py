@@ -393,16 +393,6 @@ def run_cells(rows, rec, budget=None):
     return results
 
 
-def cuda_unavailable():
-    """None when ``kernels.cuda_batch`` can run (numba-cuda and a GPU, or its simulator),
-    else the reason in words."""
-    import importlib.util
-    if importlib.util.find_spec("numba_cuda") is None:
-        return "numba-cuda is not installed (pip install '.[cuda]')"
-    from . import cuda_batch
-    return cuda_batch.available()
-
-
 def not_run(n, status=codes.INVALID_SCENE):
     """Results (n records of ``codes.RESULT_DTYPE``) of scenes that never ran: ``status``,
     no impacts, steps or events, no overturning direction, NaN for every other result."""

@@ -9,7 +9,7 @@ the study's dimensions); ``REFINE_VARIABLES``, the boundaries of a refine study
 (:func:`refine_dataset`, ``sweep.runner.refine``); ``HISTORY_VARIABLES``, the time history of
 one scene (:func:`history_dataset`).  :func:`variable_attrs` turns an entry into CF attributes
 and :func:`encoding` chooses how every dataset is stored (zlib level 1, no ``_FillValue`` on
-integer flags and coordinates); ``runner.store.write_netcdf`` writes them.  xarray is imported
+integer flags and coordinates); ``netcdf.write_netcdf`` writes them.  xarray is imported
 only when a Dataset is built.
 """
 import datetime

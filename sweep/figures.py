@@ -182,7 +182,7 @@ def draw_fragility(comm, output):
     from .plots.fragility import figure as fragility_figure
     from .plots.style import save_figure
     from .probability.fragility import default_levels, fragility
-    from .runner.store import write_netcdf
+    from .netcdf import write_netcdf
 
     for name in share(list(FRAGILITY), comm.Get_size())[comm.Get_rank()]:
         wanted = FRAGILITY[name]

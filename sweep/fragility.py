@@ -90,7 +90,7 @@ def main(argv=None):
     import xarray as xr
 
     from .probability.fragility import fragility, validate_request
-    from .runner.store import write_netcdf
+    from .netcdf import write_netcdf
 
     try:
         with xr.open_dataset(source) as opened:

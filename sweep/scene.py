@@ -74,7 +74,7 @@ def main(argv=None):
         result = simulate(args.scene, history=bool(files))
     read = [provenance_line(component, said) for component, said in result.provenance.items()]
     if args.history:
-        from .runner.store import write_netcdf
+        from .netcdf import write_netcdf
         write_netcdf(result.history, args.history)
     if args.plot or args.animate:
         import matplotlib

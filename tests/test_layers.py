@@ -7,7 +7,10 @@ resolved to the module it names: ``from .. import cf`` in ``sweep.runner.store``
 belongs to a layer of ``LAYERS``, bottom to top; a module may import its own layer (``paper``
 and ``probability`` are one layer, the commands another) and the layers below it, never one
 above.  ``kernels`` never imports ``sweep``, mpi4py, xarray or matplotlib either.  A module that
-no layer names fails the test too: a new module is placed in a layer when it is added.
+no layer names fails the test too: a new module is placed in a layer when it is added.  No
+two modules import each other, directly or round a circle (lazy imports inside functions
+included), and one module, ``kernels.gpu``, is the door to the GPU: the only one that imports
+``kernels.cuda_batch``.
 
 The bottom of ``sweep`` is ``sweep._version`` and ``sweep.bodies`` (g and the body scales);
 ``sweep.cf``, the one CF metadata table, sits below the runner that fills it.  Two modules are
@@ -40,7 +43,7 @@ LAYERS = (
     ("groundmotion", ("sweep.groundmotion",)),  # motions as numbers
     ("io", ("sweep.io",)),  # files, units, schemas, record formats, the study's vocabulary
     ("cli", ("sweep.cli",)),  # what every command shares (see above)
-    ("cf", ("sweep.cf",)),  # the one CF metadata table
+    ("cf", ("sweep.cf", "sweep.netcdf")),  # the one CF metadata table, its netCDF writer
     ("runner", ("sweep.runner",)),  # grid, cells, MPI, store, refine, lock, fingerprint, ...
     ("paper and probability", ("sweep.paper", "sweep.probability")),
     ("plots", ("sweep.plots",)),  # figures from datasets
@@ -120,6 +123,33 @@ def upward_imports():
     return found
 
 
+def import_graph():
+    """{module: sorted modules of the packages it imports}, functions included."""
+    return {name: sorted({target for _, _, target in imports(name, path)
+                          if target in MODULES and target != name})
+            for name, path in MODULES.items()}
+
+
+def circles(graph):
+    """Every import circle a depth-first walk of ``graph`` meets, each as the path of modules
+    back to where it starts."""
+    found, state = [], {}
+
+    def visit(name, path):
+        state[name] = "open"
+        for target in graph[name]:
+            if state.get(target) == "open":
+                found.append(path[path.index(target):] + [target])
+            elif target not in state:
+                visit(target, path + [target])
+        state[name] = "done"
+
+    for name in graph:
+        if name not in state:
+            visit(name, [name])
+    return found
+
+
 def test_every_module_has_a_layer():
     assert [name for name in MODULES if layer(name) is None] == []
 
@@ -140,3 +170,18 @@ def test_an_upward_import_is_found(tmp_path):
     found = [(line, target) for line, _, target in imports("sweep.io.units", path)]
     assert found == [(1, "sweep.paper.criteria"), (2, "sweep.runner.grid"), (4, "sweep")]
     assert [layer(target) > layer("sweep.io.units") for _, target in found] == [True] * 3
+
+
+def test_no_import_circle():
+    assert circles(import_graph()) == []
+
+
+def test_an_import_circle_is_found():
+    graph = {"a": ["b"], "b": ["c"], "c": ["a"], "d": ["a", "e"], "e": []}
+    assert circles(graph) == [["a", "b", "c", "a"]]
+
+
+def test_one_door_to_the_gpu():
+    """Only ``kernels.gpu`` imports ``kernels.cuda_batch`` (numba-cuda)."""
+    assert [name for name, targets in import_graph().items()
+            if "kernels.cuda_batch" in targets] == ["kernels.gpu"]

@@ -58,7 +58,7 @@ from .files import find_files, named
 from .plausibility import body_doubts, glob_notes, levels_doubt
 from .loader import load_file
 from .problems import MISSING, FieldError, Problem, fields_checked, warn
-from .scene_schema import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
+from .fields import (Acceleration, Coefficient, Duration, Length, Real, StrictModel,
                            quantity)
 
 DEFAULT_MU = 0.6  # friction of a body that gives none: stone on stone or concrete

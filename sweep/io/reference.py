@@ -24,7 +24,7 @@ from kernels.api import DEFAULTS
 
 from . import bodies_schema as bodies
 from . import risk_schema as risk
-from . import scene_schema as scene
+from . import scene_models as scene
 from . import study_schema as study
 from . import units, vocabulary
 
@@ -265,7 +265,7 @@ def heading(title, section):
 def markdown():
     """The text of ``docs/schema.md``."""
     out = ["# Input files: every key", "",
-           "Written by `python -m sweep.io.reference` from the models of `sweep.io.scene_schema`, "
+           "Written by `python -m sweep.io.reference` from the models of `sweep.io.scene_models`, "
            "`sweep.io.study_schema`, `sweep.io.bodies_schema` and `sweep.io.risk_schema`: edit "
            "those, not this file.  Editors can check and complete scene, study and risk files "
            "with `docs/scene.schema.json`, `docs/study.schema.json` and "

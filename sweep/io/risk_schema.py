@@ -34,11 +34,12 @@ import numpy as np
 from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
                       WithJsonSchema, field_validator, model_validator)
 
+from .fields import Real, Seed, StrictModel, quantity
 from .imt import im_dimension, normalize_im
 from .loader import load_file
 from .problems import MISSING, FieldError, FileProblems, dotted_path, fields_checked
 from .records import NAMES as RECORD_NAMES
-from .scene_schema import KINDS, Real, Seed, StrictModel, load_scene, quantity
+from .scene_schema import KINDS, load_scene
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
 MECHANISMS = ("SS", "NS", "RS")

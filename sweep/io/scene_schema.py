@@ -1,625 +1,31 @@
-"""Scene files (docs/design.md section 4): validation into pydantic models, and resolution into SI.
+"""Scene files (docs/design.md section 4): their checks, and their resolution into SI.
 
-``load_scene`` reads a YAML file (or takes a dict), checks it and reports every problem at
-once as :class:`~sweep.io.problems.FileProblems` with dotted paths; ``resolve_scene`` turns the
-checked scene into the resolved SI dict of ``kernels/api.py`` (units and body-relative units
-resolved with the scene's own body, records loaded, defaults of ``kernels.api.DEFAULTS`` filled
-in).  ``apply_overrides`` sets values by dotted path in a raw dict before validation, which is
-how a study gives each cell its values.
+``load_scene`` reads a YAML file (or takes a dict), checks it against the models of
+``sweep.io.scene_models`` and reports every problem at once as
+:class:`~sweep.io.problems.FileProblems` with dotted paths; ``resolve_scene`` turns the checked
+scene into the resolved SI dict of ``kernels/api.py`` (units and body-relative units resolved
+with the scene's own body, records loaded, defaults of ``kernels.api.DEFAULTS`` filled in).
 """
-import copy
 import functools
 import math
-import sys
-from dataclasses import dataclass
-from pathlib import Path
-from typing import Annotated, Literal, Optional, Union
 
 import numpy as np
-from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Discriminator,
-                      Field, PlainValidator, Tag, ValidationInfo,
-                      WithJsonSchema, field_validator, model_validator)
 
 from kernels.api import DEFAULTS, PackingError, scene_row
-from kernels.codes import LANDING_NAMES
 
 from ..groundmotion.oscillator import pseudo_acceleration
 from . import floors, records, units
-from .units import Quantity
 from .loader import load_file
-from .problems import MISSING, FieldError, FileProblems, Problem, dotted_path
+from .problems import MISSING, FileProblems, Problem, dotted_path
+from .scene_models import (KINDS, _FILE_OPTIONS, Body, Building, BuildingMode, Contact,
+                           Excitation, FloorMotion, Initial, NoMotion, PulseMotion,
+                           RecordMotion, Scene, SineMotion, Solver, SpectralTarget,
+                           SweepMotion, SyntheticMotion, _read_file)
+from .units import Quantity
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
 MAX_HISTORY = 2_000_000  # samples of a history (about 200 MB): t_end / dt_out at most this
 SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks within 1.3 %
-KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic", "floor")
-SCALE_KEYS = ("scale", "pga", "pgv", "sa")  # how a record or synthetic motion is scaled
-HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
-                   "displacement": "length"}
-MAX_COUNT = 2 ** 53  # largest count (max_steps, max_events) a float64 scene field holds exactly
-
-
-@dataclass(frozen=True)
-class QuantityOf:
-    """Annotation of a quantity field: its dimensions and bound, for its JSON Schema (a number
-    in SI units or a string ``"<number> <unit>"``) and the reference (``sweep.io.reference``)."""
-
-    dimensions: tuple
-    gt: float = None
-    ge: float = None
-
-    def __get_pydantic_json_schema__(self, core_schema, handler):
-        bounds = {key: value for key, value in (("exclusiveMinimum", self.gt),
-                                                ("minimum", self.ge)) if value is not None}
-        return {"anyOf": [{"type": "number", **bounds},
-                          {"type": "string", "pattern": units.QUANTITY_PATTERN}],
-                "x-dimensions": list(self.dimensions)}
-
-
-def quantity(*dimensions, gt=None, ge=None):
-    """Annotated type: a :class:`Quantity` of ``dimensions`` with an optional sign check."""
-    def check(q):
-        # every unit factor is positive, so the sign of the value is the sign in SI
-        if gt is not None and not q.value > gt:
-            raise ValueError(f"must be greater than {gt}")
-        if ge is not None and not q.value >= ge:
-            raise ValueError(f"must be greater than or equal to {ge}")
-        return q
-    return Annotated[Quantity, PlainValidator(lambda v: units.parse_quantity(v, dimensions)),
-                     AfterValidator(check), QuantityOf(dimensions, gt, ge)]
-
-
-def _plain_number(value):
-    """Refuse true/false where a number is meant (YAML's booleans are ints to Python), and an
-    integer beyond the float range."""
-    if isinstance(value, bool):
-        raise ValueError("must be a number, not true/false")
-    if isinstance(value, int) and abs(value) > sys.float_info.max:
-        raise ValueError("must be a finite number")
-    return value
-
-
-Real = Annotated[float, BeforeValidator(_plain_number)]
-Count = Annotated[int, BeforeValidator(_plain_number), Field(gt=0, le=MAX_COUNT)]
-Length = quantity("length", gt=0)
-Instant = quantity("time", ge=0)
-Duration = quantity("time", gt=0)
-Frequency = quantity("frequency", gt=0)
-Angle = quantity("angle")
-Acceleration = quantity("acceleration")
-Coefficient = Annotated[Real, Field(ge=0)]
-Seed = Annotated[int, BeforeValidator(_plain_number), Field(ge=0, le=2 ** 63 - 1)]
-
-
-class StrictModel(BaseModel):
-    """A section of an input file: unknown keys and non-finite numbers refused."""
-
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
-
-    @model_validator(mode="before")
-    @classmethod
-    def _empty_section(cls, data):
-        """A section written with nothing under it (``contact:``) is an empty mapping."""
-        return {} if data is None else data
-
-
-class Body(StrictModel):
-    """Full breadth ``B`` and height ``H``, centre of gravity ``G`` and ``i_g`` radius of
-    gyration about G (default uniform); or, as the precarious-rock literature gives a body,
-    ``alpha_1, alpha_2`` with ``R_1, R_2`` or with the height ``h`` of G (and optionally
-    ``H``), converted into B and G (docs/bodies.md)."""
-
-    model_config = ConfigDict(json_schema_extra={"if": {"not": {"required": ["alpha_1"]}},
-                                                 "then": {"required": ["B", "H"]}})
-
-    B: Optional[Length] = Field(None, description="full breadth (b = B/2); required unless "
-                                                  "the rock form (alpha_1, alpha_2) is given")
-    H: Optional[Length] = Field(None, description="full height (h = H/2); required unless "
-                                                  "the rock form gives G (default 2 y_G)")
-    G: Optional[Annotated[list[quantity("length")], Field(min_length=2, max_length=2)]] = Field(
-        None, description="centre of gravity [x, y] from the middle of the base, x to the "
-                          "right; default [0, H/2]")
-    i_g: Optional[Length] = Field(None, description="radius of gyration about the centre of "
-                                                    "gravity G; default a uniform block's, "
-                                                    "sqrt((B^2 + H^2)/12)")
-    alpha_1: Optional[Angle] = Field(None, description="angle at G between the vertical and "
-                                                       "the left corner (-x), atan(b1/y_G)")
-    alpha_2: Optional[Angle] = Field(None, description="angle at G between the vertical and "
-                                                       "the right corner (+x), atan(b2/y_G)")
-    R_1: Optional[Length] = Field(None, description="distance from G to the left corner")
-    R_2: Optional[Length] = Field(None, description="distance from G to the right corner")
-    h: Optional[Length] = Field(None, description="height of G above the base, with alpha_1 "
-                                                  "and alpha_2 instead of R_1, R_2")
-
-    @field_validator("i_g")
-    @classmethod
-    def _square_finite(cls, i_g):
-        """The kernel takes i_g squared."""
-        if i_g is not None and not math.isfinite(i_g.to_si() * i_g.to_si()):
-            raise ValueError("too large: its square leaves the float range")
-        return i_g
-
-    @property
-    def form(self):
-        """``"rock"`` for a body given by alpha_1, alpha_2 (its shape above the base unknown),
-        else ``"rectangle"`` (B x H)."""
-        return "rock" if self.alpha_1 is not None else "rectangle"
-
-    @model_validator(mode="after")
-    def _one_form(self):
-        """B and H (and G), or the rock form turned into B and G (:meth:`_corners`)."""
-        if all(getattr(self, key) is None for key in ROCK_KEYS):
-            missing = [key for key in ("B", "H") if getattr(self, key) is None]
-            if missing:
-                raise FieldError.several([(key, MISSING, "is required (or give alpha_1, "
-                                                         "alpha_2 and R_1, R_2 or h)")
-                                          for key in missing])
-            return self
-        if self.B is not None or self.G is not None:
-            raise FieldError("B" if self.B is not None else "G", MISSING,
-                             "give B and G, or alpha_1, alpha_2 and R_1, R_2 or h, not both")
-        b1, b2, h = self._corners()
-        self.B = Quantity(b1 + b2, "m", "length")   # in metres: not a bare number written
-        self.G = [Quantity(0.5 * (b1 - b2), "m", "length"), Quantity(h, "m", "length")]
-        if self.H is None:
-            self.H = Quantity(2.0 * h, "m", "length")
-        return self
-
-    def _corners(self):
-        """(b1, b2, h) [m] of the rock form: b_i = h tan alpha_i with ``h``; with R_1, R_2
-        the corners at (-R_1 sin alpha_1, -R_1 cos alpha_1) and (R_2 sin alpha_2,
-        -R_2 cos alpha_2) from G, whose heights must agree (to 1e-9)."""
-        missing = [key for key in ("alpha_1", "alpha_2") if getattr(self, key) is None]
-        lengths = [key for key in ("R_1", "R_2", "h") if getattr(self, key) is not None]
-        if missing or not lengths:
-            raise FieldError(missing[0] if missing else "R_1", MISSING,
-                             "the rock form needs alpha_1, alpha_2 and R_1, R_2 or h")
-        if "h" in lengths and len(lengths) > 1:
-            raise FieldError("h", str(self.h), "give R_1, R_2 or h, not both")
-        if lengths in (["R_1"], ["R_2"]):
-            raise FieldError("R_2" if lengths == ["R_1"] else "R_1", MISSING,
-                             "the rock form needs R_1 and R_2 (or h)")
-        a1, a2 = self.alpha_1.to_si(), self.alpha_2.to_si()
-        for key, a in (("alpha_1", a1), ("alpha_2", a2)):
-            if not 0.0 < a < math.pi / 2:
-                raise FieldError(key, str(getattr(self, key)), "must lie between 0 and 90 deg")
-        if self.h is not None:
-            h = self.h.to_si()
-            return h * math.tan(a1), h * math.tan(a2), h
-        R1, R2 = self.R_1.to_si(), self.R_2.to_si()
-        h1, h2 = R1 * math.cos(a1), R2 * math.cos(a2)
-        if abs(h1 - h2) > 1e-9 * max(h1, h2):
-            raise FieldError("R_2", str(self.R_2), _disagreeing_r2(self.R_2, h1 / math.cos(a2)))
-        return R1 * math.sin(a1), R2 * math.sin(a2), 0.5 * (h1 + h2)
-
-
-ROCK_KEYS = ("alpha_1", "alpha_2", "R_1", "R_2", "h")
-
-
-def _disagreeing_r2(R_2, agreeing):
-    """The message of an ``R_2`` whose corner is not at the height of R_1's: the value
-    ``agreeing`` [m] that would be, in R_2's own unit."""
-    unit = R_2.unit or "m"
-    value = agreeing * R_2.value / R_2.to_si()
-    return (f"R_2 = {R_2.value:.12g} {unit} does not agree with R_1 cos alpha_1 / cos alpha_2 "
-            f"= {value:.6g} {unit}: give R_2: {value:.12g} {unit}, or use "
-            "{alpha_1, alpha_2, h}")
-
-
-class Contact(StrictModel):
-    """Friction and restitution; ``mu`` sets all four friction coefficients, explicit ones win."""
-
-    mu: Optional[Coefficient] = Field(None, description="the four friction coefficients "
-                                                       "at once")
-    mu_s: Optional[Coefficient] = Field(None, description="static friction, the base face on "
-                                                         "the floor")
-    mu_k: Optional[Coefficient] = Field(None, description="kinetic friction, the base face on "
-                                                         "the floor")
-    mu_edge_s: Optional[Coefficient] = Field(None, description="static friction, one corner "
-                                                              "on the floor")
-    mu_edge_k: Optional[Coefficient] = Field(None, description="kinetic friction, one corner "
-                                                              "on the floor")
-    e_x: Optional[Annotated[Real, Field(ge=-1, le=1)]] = Field(
-        None, description="tangential restitution: -1 keeps, 0 stops the tangential velocity")
-    e_y: Optional[Annotated[Real, Field(ge=0, le=1)]] = Field(
-        None, description="normal restitution (0 with enough friction: Housner's impact)")
-    landing: Literal[LANDING_NAMES] = Field(
-        DEFAULTS["contact"]["landing"], description="law of a landing after a translation "
-        "jump: face_friction (one contact at the middle of the base: its friction turns the "
-        "body; the paper's Fig. 5), flat (two-contact impulse), corner (the leading corner "
-        "first); docs/landing.md")
-
-
-class _Ground(StrictModel):
-    """A floor-motion component; the floor is still outside [start, start + duration)."""
-
-    start: Optional[Instant] = Field(None, description="when the component starts moving "
-                                                       "the floor")
-    duration: Optional[Duration] = Field(None, description="how long it moves the floor "
-                                                           "(default: to its end)")
-
-
-class NoMotion(StrictModel):
-    """A floor still along this direction."""
-
-    kind: Literal["none"] = Field(description="the kind of motion")
-
-
-class _Phased(_Ground):
-    """A periodic motion's ``phase``, or a ``seed`` that draws it uniformly in [0, 2 pi)."""
-
-    phase: Optional[Angle] = Field(None, description="phase at the start")
-    seed: Optional[Seed] = Field(None, description="draws the phase uniformly in [0, 2 pi) "
-                                                   "instead")
-
-    @model_validator(mode="after")
-    def _phase_or_seed(self):
-        if self.phase is not None and self.seed is not None:
-            raise FieldError("seed", self.seed, "give either phase or seed, not both")
-        return self
-
-
-class SineMotion(_Phased):
-    """Amplitude as acceleration, velocity or displacement (converted with omega = 2 pi f)."""
-
-    kind: Literal["sine"] = Field(description="the kind of motion")
-    amplitude: quantity("acceleration", "velocity", "length") = Field(
-        description="acceleration, velocity or displacement amplitude")
-    frequency: Frequency = Field(description="frequency f")
-
-
-class SweepMotion(_Phased):
-    """Frequency sweep keeping the amplitude named by ``hold`` constant; ``duration`` = length."""
-
-    kind: Literal["sweep"] = Field(description="the kind of motion")
-    hold: Literal["acceleration", "velocity", "displacement"] = Field(
-        DEFAULTS["ground"]["hold"], description="the amplitude kept constant")
-    amplitude: Annotated[Quantity, QuantityOf(tuple(HOLD_DIMENSIONS.values()))] = Field(
-        description="the amplitude held, of the dimension that hold names")
-    f_start: Frequency = Field(description="frequency at the start")
-    f_stop: Frequency = Field(description="frequency at the end")
-    duration: Duration = Field(description="length of the sweep")
-    law: Optional[Literal["log", "linear"]] = Field(None, description="frequency against time")
-
-    @field_validator("amplitude", mode="plain")
-    @classmethod
-    def _amplitude_of_hold(cls, value, info: ValidationInfo):
-        hold = info.data.get("hold")
-        if hold is None:  # hold itself is wrong and reported; still check the amplitude
-            return units.parse_quantity(value, tuple(HOLD_DIMENSIONS.values()))
-        try:
-            return units.parse_quantity(value, HOLD_DIMENSIONS[hold])
-        except ValueError as err:
-            raise ValueError(f"{err} (hold: {hold})") from None
-
-
-class SpectralTarget(StrictModel):
-    """The 5 %-damped pseudo-spectral acceleration Sa(T) a motion is scaled to
-    (``sweep.groundmotion.oscillator``); T = 0 is the PGA."""
-
-    period: Instant = Field(description="period T of the oscillator")
-    value: quantity("acceleration", gt=0) = Field(description="Sa(T, 5 %) after scaling")
-
-
-class _Scaled(_Ground):
-    """An accelerogram multiplied by ``scale``, or scaled so that its PGA, its PGV
-    (``sweep.groundmotion.intensity``) or its Sa(T) is the one given; a vertical component may
-    take the horizontal one's factor instead (``scale_with: horizontal``), which keeps their
-    ratio."""
-
-    scale: Optional[Real] = Field(None, description="factor on the samples (-1 flips the "
-                                                    "polarity)")
-    pga: Optional[quantity("acceleration", gt=0)] = Field(
-        None, description="the PGA the motion is scaled to")
-    pgv: Optional[quantity("velocity", gt=0)] = Field(
-        None, description="the PGV (after a 0.1 Hz baseline correction) it is scaled to")
-    sa: Optional[SpectralTarget] = Field(
-        None, description="the 5 %-damped pseudo-spectral acceleration it is scaled to: "
-                          "{period, value}")
-    scale_with: Optional[Literal["horizontal"]] = Field(
-        None, description="vertical only: the horizontal component's scale factor")
-
-    @model_validator(mode="after")
-    def _one_scale(self):
-        given = [key for key in SCALE_KEYS if getattr(self, key) is not None]
-        if self.scale_with is not None and given:
-            raise FieldError("scale_with", self.scale_with,
-                              f"takes the {self.scale_with} component's scale factor: give no "
-                              f"{given[0]} with it")
-        if len(given) > 1:
-            raise FieldError(given[1], str(getattr(self, given[1])),
-                              f"give one of scale, pga, pgv and sa, not "
-                              f"{' and '.join(given)}")
-        return self
-
-
-def _component(value):
-    """A component of a record file: its number (from 1) or its name."""
-    if isinstance(value, bool) or not isinstance(value, (int, str)):
-        raise ValueError("must be a component's number (1, 2, ...) or its name")
-    if isinstance(value, int) and value < 1:
-        raise ValueError("component numbers start at 1")
-    if isinstance(value, str) and not value.strip():
-        raise ValueError("must not be empty")
-    return value
-
-
-class RecordMotion(_Scaled):
-    """A bundled record (``name``) or a user's file (``path``), scaled by ``scale`` or to ``pga``
-    or ``pgv``.
-
-    A file's format (``records.FORMATS``) is told by its extension or content unless ``format``
-    names it (docs/record_formats.md).  ``units`` is the acceleration unit of a two- or
-    one-column file (default: the unit its ``#`` comments state, else m/s^2); a file that
-    states its units (every other format; comments) refuses another.  ``dt`` is the sample step
-    of a one-column file, required there only; ``component`` picks one of the components of a
-    COSMOS or CSMIP file, by number or name.  A relative ``path`` is taken from the scene
-    file's folder.
-    """
-
-    kind: Literal["record"] = Field(description="the kind of motion")
-    name: Optional[str] = Field(None, description="a bundled record: "
-                                                  + ", ".join(records.NAMES))
-    units: Optional[str] = Field(None, description="acceleration unit of a one- or two-column "
-                                                   "file (default: the one its comments "
-                                                   "state, else m/s^2)")
-    format: Optional[Literal[records.FORMATS]] = Field(None, description="the file's format "
-                                                                         "(default: told by "
-                                                                         "its name or content)")
-    dt: Optional[Duration] = Field(None, description="sample step of a one-column file")
-    component: Optional[Annotated[Union[int, str], PlainValidator(_component), WithJsonSchema(
-        {"anyOf": [{"type": "integer", "minimum": 1}, {"type": "string"}]})]] = Field(
-        None, description="component of a COSMOS or CSMIP file: its number (from 1) or name")
-    path: Optional[str] = Field(None, description="a record file, relative to the scene "
-                                                  "file's folder")
-
-    @field_validator("name")
-    @classmethod
-    def _known_name(cls, name):
-        if name is not None and name not in records.NAMES:
-            raise ValueError(f"unknown record; bundled records: {', '.join(records.NAMES)}")
-        return name
-
-    @field_validator("units")
-    @classmethod
-    def _acceleration_unit(cls, unit):
-        if unit is not None:
-            units.fixed_factor(unit, "acceleration")
-        return unit
-
-    @field_validator("path")
-    @classmethod
-    def _readable(cls, path, info: ValidationInfo):
-        if path is None:
-            return None
-        base = Path((info.context or {}).get("base_dir") or ".")
-        full = (base / Path(path).expanduser()).resolve()
-        if all(key in info.data for key in _FILE_OPTIONS):  # else an option's own error says it
-            try:
-                _read_file(full, info.data)
-            except records.RecordError as err:
-                raise ValueError(str(err)) from None
-        return str(full)
-
-    @model_validator(mode="after")
-    def _one_source_one_scale(self):
-        if self.name is None and self.path is None:
-            raise FieldError("name", MISSING,
-                              "required: name (a bundled record) or path (a file)")
-        if self.name is not None and self.path is not None:
-            raise FieldError("path", self.path, "give either name or path, not both")
-        for key in _FILE_OPTIONS:
-            if getattr(self, key) is not None and self.path is None:
-                raise FieldError(key, str(getattr(self, key)), "given for a path: file only")
-        return self
-
-
-_FILE_OPTIONS = ("units", "format", "dt", "component")
-
-
-def _read_file(path, options):
-    """The :class:`~sweep.io.records.Record` of a record file with the options of a
-    :class:`RecordMotion` (``units``, ``format``, ``dt``, ``component`` in ``options``)."""
-    dt = options["dt"]
-    return records.read_record_file(path, options["units"], format=options["format"],
-                                    dt=None if dt is None else dt.to_si(),
-                                    component=options["component"])
-
-
-class SyntheticMotion(_Scaled):
-    """A motion of a published stochastic model for an earthquake scenario
-    (``sweep.groundmotion.stochastic``): moment magnitude, distance to the rupture, Vs30 and
-    the seed of the noise; sampled every ``dt``."""
-
-    kind: Literal["synthetic"] = Field(description="the kind of motion")
-    model: str = Field("boore2003", description="the stochastic ground-motion model")
-    magnitude: Annotated[Real, Field(ge=4.0, le=8.5)] = Field(description="moment magnitude")
-    distance: quantity("length", gt=0) = Field(description="distance to the rupture")
-    vs30: quantity("velocity", gt=0) = Field(description="mean shear-wave velocity of the "
-                                                         "site's top 30 m")
-    seed: Seed = Field(0, description="seed of the noise")
-    dt: Optional[Duration] = Field(None, description="sample step (default: the model's)")
-
-    @field_validator("model")
-    @classmethod
-    def _known_model(cls, model):
-        from ..groundmotion import stochastic
-        if model not in stochastic.MODELS:
-            raise ValueError(f"unknown model; models: {', '.join(stochastic.MODELS)}")
-        return model
-
-
-class PulseMotion(_Ground):
-    """Rectangular or triangular acceleration pulse of length ``duration``."""
-
-    kind: Literal["pulse"] = Field(description="the kind of motion")
-    shape: Literal["rectangular", "triangular"] = Field(description="the pulse's shape")
-    amplitude: Acceleration = Field(description="peak acceleration")
-    duration: Duration = Field(description="length of the pulse")
-
-
-GroundMotion = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
-                               SyntheticMotion], Field(discriminator="kind")]
-
-
-def _ratio(value):
-    """A damping ratio: a number (0.05) or a percentage (``"5 %"``)."""
-    if isinstance(value, str) and value.strip().endswith("%"):
-        try:
-            return float(value.strip()[:-1]) / 100.0
-        except ValueError:
-            raise ValueError("must be a number or a percentage such as '5 %'") from None
-    return _plain_number(value)
-
-
-Damping = Annotated[float, BeforeValidator(_ratio), Field(ge=0, lt=1), WithJsonSchema(
-    {"anyOf": [{"type": "number", "minimum": 0, "exclusiveMaximum": 1},
-               {"type": "string", "pattern": r"^\s*[0-9.]+\s*%\s*$"}]})]
-
-
-class BuildingMode(StrictModel):
-    """One mode of a building at the floor (docs/floors.md)."""
-
-    period: quantity("time", gt=0) = Field(description="period of the mode")
-    damping: Optional[Damping] = Field(None, description="damping ratio (default: the "
-                                                         "building's)")
-    participation: Real = Field(description="participation factor times the mode shape at "
-                                            "the floor, Gamma phi")
-
-
-class Building(StrictModel):
-    """A linear building: its fundamental ``period`` and the floor's ``height_ratio`` z/H
-    give the modes of a uniform shear beam, or ``modes`` lists them (docs/floors.md)."""
-
-    period: Optional[quantity("time", ge=0)] = Field(
-        None, description="fundamental period T1 (0: a rigid building)")
-    damping: Damping = Field("5 %", validate_default=True,
-                             description="damping ratio of every mode (5 % or 0.05)")
-    height_ratio: Annotated[Real, Field(gt=0, le=1)] = Field(
-        1.0, description="height of the floor over the building's, z/H (1: the top)")
-    modes: Annotated[Union[Annotated[int, BeforeValidator(_plain_number), Field(ge=1, le=100),
-                                     Tag("count")],
-                           Annotated[list[BuildingMode], Tag("list")]],
-                     Discriminator(lambda v: "list" if isinstance(v, list) else "count")] = Field(
-        1, description="number of shear-beam modes, or the modes as a list of {period, "
-                       "damping, participation}")
-
-    @model_validator(mode="after")
-    def _period_or_modes(self):
-        if isinstance(self.modes, list):
-            given = [k for k in ("period", "height_ratio") if k in self.model_fields_set]
-            if given:
-                raise FieldError(given[0], str(getattr(self, given[0])),
-                                 "the modes are listed: give each one's period and "
-                                 "participation there, or a period and a number of modes")
-        elif self.period is None:
-            raise FieldError("period", MISSING, "the fundamental period is required unless "
-                                                "modes lists the modes")
-        return self
-
-
-class FloorMotion(StrictModel):
-    """The absolute acceleration of a floor of a linear ``building`` over any ``ground``
-    motion (``sweep.groundmotion.floor``); the ground's ``start`` and ``duration`` are the
-    floor's."""
-
-    kind: Literal["floor"] = Field(description="the kind of motion")
-    ground: GroundMotion = Field(description="the ground motion under the building")
-    building: Building = Field(description="the building")
-
-    @field_validator("ground", mode="before")
-    @classmethod
-    def _none_shorthand(cls, value):
-        return {"kind": "none"} if value is None or value == "none" else value
-
-    @model_validator(mode="after")
-    def _own_scale(self):
-        if getattr(self.ground, "scale_with", None) is not None:
-            raise FieldError(("ground", "scale_with"), self.ground.scale_with,
-                             "a floor's ground has a scale of its own")
-        return self
-
-
-Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
-                         SyntheticMotion, FloorMotion], Field(discriminator="kind")]
-
-
-class Excitation(StrictModel):
-    """The floor's motion: one component along each direction, of any kind."""
-
-    horizontal: Ground = Field(default_factory=lambda: NoMotion(kind="none"),
-                               description="floor acceleration along x (to the right)")
-    vertical: Ground = Field(default_factory=lambda: NoMotion(kind="none"),
-                             description="floor acceleration along y (upward)")
-
-    @field_validator("horizontal", "vertical", mode="before")
-    @classmethod
-    def _none_shorthand(cls, value):
-        """``vertical: none`` or an empty entry means no motion."""
-        return {"kind": "none"} if value is None or value == "none" else value
-
-    @model_validator(mode="after")
-    def _scale_with_a_scaled_horizontal(self):
-        """``scale_with`` is the vertical's, and needs a horizontal record or synthetic
-        motion, which has a scale factor."""
-        if isinstance(self.horizontal, _Scaled) and self.horizontal.scale_with is not None:
-            raise FieldError(("horizontal", "scale_with"), self.horizontal.scale_with,
-                              "only the vertical component can take the horizontal's scale")
-        kind = self.horizontal.kind
-        if isinstance(self.vertical, _Scaled) and self.vertical.scale_with is not None and \
-                kind not in ("record", "synthetic"):
-            raise FieldError(("vertical", "scale_with"), self.vertical.scale_with,
-                              f"the horizontal component is of kind {kind}: only a record or "
-                              "a synthetic motion has a scale factor to share")
-        return self
-
-
-class Initial(StrictModel):
-    """Initial state: tilt, angular velocity, velocities of G and lift of the base [SI]."""
-
-    theta: Optional[Angle] = Field(None, description="tilt, > 0 about the left corner")
-    omega: Optional[quantity("angular_velocity")] = Field(None,
-                                                          description="angular velocity")
-    x_dot: Optional[quantity("velocity")] = Field(None, description="horizontal velocity of G")
-    y_dot: Optional[quantity("velocity")] = Field(None, description="vertical velocity of G")
-    lift: Optional[quantity("length", ge=0)] = Field(None, description="lift of the base "
-                                                                       "above the floor")
-
-
-class Solver(StrictModel):
-    """Integrator and guards (docs/physics.md 3); ``t_end`` and ``dt_out`` (the history's sampling)
-    default from the excitation."""
-
-    method: Optional[Literal["adaptive", "fixed"]] = Field(
-        None, description="steps controlled by rtol and atol, or fixed steps of dt")
-    rtol: Optional[Annotated[Real, Field(gt=0)]] = Field(None, description="relative "
-                                                                           "tolerance")
-    atol: Optional[Annotated[Real, Field(gt=0)]] = Field(None, description="absolute "
-                                                                           "tolerance")
-    dt: Optional[Duration] = Field(None, description="step of the fixed method")
-    max_step: Optional[Duration] = Field(None, description="largest adaptive step")
-    t_end: Optional[Duration] = Field(None, description="time simulated (default: the end of "
-                                                        "the excitation + 5 s, if it ends)")
-    max_steps: Optional[Count] = Field(None, description="steps at most (then status "
-                                                         "budget_exhausted)")
-    max_events: Optional[Count] = Field(None, description="events (impacts, mode changes) at "
-                                                          "most (then budget_exhausted)")
-    theta_overturn: Optional[quantity("angle", gt=0)] = Field(
-        None, description="|theta| at which the body counts as overturned")
-    zeno_dt: Optional[Duration] = Field(None, description="contacts closing again within this "
-                                                          "time close at once (Zeno)")
-    dt_out: Optional[Duration] = Field(None, description="sampling step of the history "
-                                                         "(--history, --plot, --animate)")
-
-
-class Scene(StrictModel):
-    """A scene file (docs/design.md section 4); fields left out take ``kernels.api.DEFAULTS``."""
-
-    body: Body = Field(description="the rigid block")
-    contact: Contact = Field(default_factory=Contact, description="friction and restitution")
-    excitation: Excitation = Field(default_factory=Excitation, description="the floor's motion")
-    initial: Initial = Field(default_factory=Initial, description="the state at t = 0")
-    solver: Solver = Field(default_factory=Solver, description="integrator, budgets, history")
 
 
 # --- errors -----------------------------------------------------------------------------------
@@ -667,40 +73,6 @@ def load_scene(source, *, base_dir=None):
     """
     return load_file(source, Scene, "scene", "body, contact", _FIELD_NAMES, base_dir=base_dir,
                      dotted=_dotted, tags=KINDS, despite_syntax=True)
-
-
-def apply_overrides(raw, overrides):
-    """A copy of the raw scene dict with values set by dotted path, before validation.
-
-    ``apply_overrides(raw, {"excitation.horizontal.amplitude": "1.2 west", "body.H": 0.4})``.
-    Missing intermediate mappings are created; the values are raw (numbers or unit strings), so
-    that :func:`load_scene` checks them like values written in the file.  Note that the ``mu``
-    shorthand loses to explicit ``mu_s`` ... keys: a study axis on ``mu`` must not meet them.
-
-    Raises
-    ------
-    FileProblems
-        When a path goes through a value that is not a mapping.
-    """
-    new = copy.deepcopy(raw)
-    problems = []
-    for dotted, value in overrides.items():
-        keys = dotted.split(".")
-        node = new
-        for i, key in enumerate(keys[:-1]):
-            if node.get(key) is None:  # absent, or a section left empty in the file
-                node[key] = {}
-            child = node[key]
-            if not isinstance(child, dict):
-                problems.append(Problem(".".join(keys[:i + 1]), child,
-                                        f"cannot set '{dotted}': not a mapping"))
-                break
-            node = child
-        else:
-            node[keys[-1]] = copy.deepcopy(value)
-    if problems:
-        raise FileProblems(problems)
-    return new
 
 
 # --- resolution into SI -----------------------------------------------------------------------
@@ -846,6 +218,13 @@ def resolve_scene(scene):
         A value that the kernel refuses once in SI (out of the float range), or ``pga`` asked
         of a record that is zero throughout.
     """
+    return resolve_and_pack(scene, [])[0]
+
+
+def resolve_and_pack(scene, records):
+    """:func:`resolve_scene` and the kernel row of the resolved scene, packed once
+    (``kernels.api.scene_row``: the scene's records placed in ``records``); raises as
+    :func:`resolve_scene` does."""
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     b = scene.body
@@ -883,21 +262,19 @@ def resolve_scene(scene):
         solver["dt_out"] = _history_dt(excitation.values(), solver["t_end"])
     resolved = {"body": body, "contact": contact, "excitation": excitation,
                 "initial": initial, "solver": solver}
-    _check_packable(resolved, scene)
-    return resolved
+    return resolved, _row(resolved, scene, records)
 
 
-def _check_packable(resolved, scene):
-    """Raise :class:`FileProblems` if the kernel refuses a resolved value: values within range
-    as written may leave the float range in SI (a displacement amplitude times omega^2)."""
+def _row(resolved, scene, records):
+    """The kernel row of a resolved scene (``kernels.api.scene_row``); :class:`FileProblems`
+    if the kernel refuses a resolved value: values within range as written may leave the
+    float range in SI (a displacement amplitude times omega^2)."""
     try:
-        scene_row(resolved, [])
+        return scene_row(resolved, records)
     except PackingError as err:                  # the kernel names the value's dotted path
         path, message = err.path, err.reason
     except (ValueError, ArithmeticError) as err:
         path, message = "(scene)", str(err)
-    else:
-        return
     node = scene
     for key in path.split("."):
         node = getattr(node, key, None)

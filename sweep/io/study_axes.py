@@ -166,13 +166,8 @@ def axis(name, values, unit, spec, path, scene):
         result = _numeric_axis(name, values, unit, allowed, path)
     if name == "seed":
         result = _integer_axis(result, path)
-    errors = []
     if name in vocabulary.COMPUTED and not np.all(result.coords > 0):
-        errors.append(FieldError(path, spec, "values must be positive numbers"))
-    unique, counts = np.unique(result.coords, return_counts=True)
-    if np.any(counts > 1):  # a coordinate must pick one cell
-        errors.append(FieldError(path, spec, f"values repeat: {unique[counts > 1][0].item()!r}"))
-    _raise(errors)
+        raise FieldError(path, spec, "values must be positive numbers")
     return result
 
 
@@ -349,6 +344,10 @@ def no_conflicts(grid):
     _raise(errors)
 
 
+_NAME_THE_ZIP = ("; the axis that names a zip group is its dimension's coordinate: name the "
+                 "group (zip: {member: [...]}) to let its values repeat")
+
+
 def zip_entries(raw):
     """``(dimension name or None, axis names, path)`` of each group of ``zip``."""
     if raw is None:
@@ -388,6 +387,22 @@ def zip_group(dim, group, path, axes, names, used):
     if dim is not None and dim in names and dim not in group:
         raise FieldError(path, dim, "a zip dimension cannot take the name of another axis")
     return dim or group[0], group
+
+
+def distinct(dims, grid):
+    """Refuse repeated values of an axis that is the coordinate of its dimension (an axis of its
+    own, or the one that names its zip group), as written in ``grid``: a dimension coordinate
+    must pick one cell.  The other axes of a zip group are coordinates along its members, and
+    two members may share a value (two records of one magnitude)."""
+    errors = []
+    for dim in dims:
+        for axis in (a for a in dim.axes if a.name == dim.name):
+            unique, counts = np.unique(axis.coords, return_counts=True)
+            if np.any(counts > 1):
+                errors.append(FieldError(join_path("grid", axis.name), grid[axis.name],
+                                         f"values repeat: {unique[counts > 1][0].item()!r}"
+                                         + ("" if len(dim.axes) == 1 else _NAME_THE_ZIP)))
+    _raise(errors)
 
 
 def dims(axes, groups):

@@ -3,18 +3,19 @@
 Cells are numbered 0 .. n-1 in C order over the study's dimensions (the last one varies
 fastest), so a cell id is a flat index into the dataset's arrays.  Each cell's scene is the
 study's base scene with the cell's axis values set at their scene paths
-(``sweep.io.vocabulary.AXES``), before validation.  A refine study's *lines* are the
-combinations of the other axes' values (``sweep.runner.refine`` bisects along each); how many
+(``sweep.io.vocabulary.AXES``) by :func:`apply_overrides`, before validation.  A refine
+study's *lines* are the combinations of the other axes' values (``sweep.runner.refine`` bisects along each); how many
 simulations it may take is counted here.  The study schema checks a study's shape with these,
 the runner's cell checks a sample of its cells' scenes, and the datasets (``sweep.cf``) are
 shaped by them, so they live in ``io``; ``sweep.runner.grid`` and ``sweep.runner.refine``
 import them under the same names.
 """
+import copy
 import math
 
 import numpy as np
 
-from .scene_schema import apply_overrides
+from .problems import FileProblems, Problem
 from .units import parse_quantity
 from .vocabulary import COMPUTED, MU_PATHS, RECORD_PATHS, _get, record_source, targets
 
@@ -61,18 +62,19 @@ def cell_coords(study, index):
 def cell_index(study, coords):
     """Flat index of the cell with the given coordinates ({axis: coordinate}).
 
-    Each dimension needs the coordinate of one of its axes; several given for one zip group
-    must point at the same position.
+    Each dimension needs coordinates of its axes that together point at one position (a
+    zipped axis may repeat a value: give another axis of its group beside it).
     """
     pos = []
     for dim in study.dims:
-        found = set()
+        found = None
         for axis in dim.axes:
             if axis.name in coords:
-                hits = np.flatnonzero(axis.coords == coords[axis.name])
-                if hits.size == 0:
+                hits = set(np.flatnonzero(axis.coords == coords[axis.name]).tolist())
+                if not hits:
                     raise KeyError(f"{coords[axis.name]!r} is not a value of axis {axis.name}")
-                found.add(int(hits[0]))
+                found = hits if found is None else found & hits
+        found = found or set()
         if len(found) != 1:
             raise KeyError(f"give one position along dimension {dim.name}: got {sorted(found)}")
         pos.append(found.pop())
@@ -123,6 +125,40 @@ def cell_overrides(study, index):
             if length is not None:
                 overrides[key] = length
     return overrides
+
+
+def apply_overrides(raw, overrides):
+    """A copy of the raw scene dict with values set by dotted path, before validation.
+
+    ``apply_overrides(raw, {"excitation.horizontal.amplitude": "1.2 west", "body.H": 0.4})``.
+    Missing intermediate mappings are created; the values are raw (numbers or unit strings), so
+    that ``io.scene_schema.load_scene`` checks them like values written in the file.  Note that the ``mu``
+    shorthand loses to explicit ``mu_s`` ... keys: a study axis on ``mu`` must not meet them.
+
+    Raises
+    ------
+    FileProblems
+        When a path goes through a value that is not a mapping.
+    """
+    new = copy.deepcopy(raw)
+    problems = []
+    for dotted, value in overrides.items():
+        keys = dotted.split(".")
+        node = new
+        for i, key in enumerate(keys[:-1]):
+            if node.get(key) is None:  # absent, or a section left empty in the file
+                node[key] = {}
+            child = node[key]
+            if not isinstance(child, dict):
+                problems.append(Problem(".".join(keys[:i + 1]), child,
+                                        f"cannot set '{dotted}': not a mapping"))
+                break
+            node = child
+        else:
+            node[keys[-1]] = copy.deepcopy(value)
+    if problems:
+        raise FileProblems(problems)
+    return new
 
 
 def cell_scene(study, index):

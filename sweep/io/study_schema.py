@@ -25,8 +25,8 @@ from pydantic import (AfterValidator, BeforeValidator, Field, PrivateAttr, WithJ
 from . import study_grid, units
 from .loader import load_file
 from .problems import MISSING, FieldError, fields_checked, join_path, warn
-from .scene_schema import StrictModel
-from .study_axes import (AXIS_LIST, MAX_AXIS_VALUES, Refine, axis, axis_list, dims,
+from .fields import StrictModel
+from .study_axes import (AXIS_LIST, MAX_AXIS_VALUES, Refine, axis, axis_list, dims, distinct,
                          fits_scene, known_name, no_conflicts, number, record_glob, refine,
                          zip_entries, zip_group)
 from .yamlio import read_text
@@ -270,6 +270,7 @@ class StudyFile(StrictModel):
         groups = _zip(data.get("zip"), axes, list(grid), errors)
         refined = _refine(data.get("refine"), axes, groups, list(grid), errors)
         study = _study(data, scene, context, dims(axes, groups), refined)
+        _kept(errors, distinct, study.dims, grid)
         sized = _kept(errors, _size, study, context["max_cells"])
         doubts = []
         if context["cells"] is not None and scene and sized:

@@ -9,7 +9,7 @@ schema reference (``sweep.io.reference``) prints them, the grid of cells
 (``sweep.cf``) name their coordinates by them; they live in ``io``, below all of these.
 """
 from .records import NAMES
-from .scene_schema import HOLD_DIMENSIONS
+from .scene_models import HOLD_DIMENSIONS
 
 # The contact friction coefficients that the ``mu`` axis sets together.
 MU_PATHS = ("contact.mu_s", "contact.mu_k", "contact.mu_edge_s", "contact.mu_edge_k")

@@ -14,7 +14,7 @@ from collections import namedtuple
 import numpy as np
 
 from ..io import units
-from ..io.scene_schema import HOLD_DIMENSIONS
+from ..io.scene_models import HOLD_DIMENSIONS
 from . import classify, criteria
 
 SweepCells = namedtuple("SweepCells", "hold down start end point late failed series labels "

@@ -584,8 +584,8 @@ def to_dataset(outcome, history=""):
 
 
 def write_dataset(ds, path):
-    """Write ``ds`` to ``path`` atomically (``runner.store.write_netcdf``: a temporary name,
+    """Write ``ds`` to ``path`` atomically (``netcdf.write_netcdf``: a temporary name,
     then ``os.replace``)."""
-    from ..runner.store import write_netcdf
+    from ..netcdf import write_netcdf
 
     return write_netcdf(ds, path)

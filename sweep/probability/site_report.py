@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from .fragility import counted
-from .site import MIN_LEVELS, MIN_MATCHES, support_advice
+from .site_posterior import MIN_LEVELS, MIN_MATCHES, support_advice
 
 MAP_METHOD = ("Gaussian-kernel average of the consistency indicator in (ln PGA, ln PGV/PGA); "
               "the region at q is where it is at least q")

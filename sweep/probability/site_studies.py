@@ -4,10 +4,8 @@ specimens, one study per specimen under the ensemble, run or reused, their datas
 Each distinct body (B, H, i_g, mu) is one study: levels x members, run as ``python -m
 sweep.run`` runs it, in this process (``runner.launch.run_file``; :func:`ensemble_datasets`),
 into ``<folder>/<key>.nc`` with the study beside it as ``<key>.yaml``; a dataset whose
-fingerprint matches the inputs is reused, so a second estimate is instant.  The study schema
-wants distinct values along every axis, and bodies of one site often share B, H or mu, so the
-bodies cannot be one zipped dimension; one study per body also lets an added body or a second
-site reuse what is done.  On a cluster:
+fingerprint matches the inputs is reused, so a second estimate is instant; one study per body
+lets an added body or a second site reuse what is done.  On a cluster:
 ``python -m sweep.estimate BODIES.yaml --write-study DIR`` writes the studies, ``mpiexec -n N
 python -m sweep.run DIR/<key>.yaml`` runs each, and the estimate then reads their datasets.
 A body that slides (mu < B/H) is not simulated.  SI units throughout.

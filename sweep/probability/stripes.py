@@ -37,8 +37,6 @@ HORIZONTAL = "excitation.horizontal."  # the keys of the stripe's motion on the 
 GROUND = "excitation.horizontal.ground."  # ... under a building's floor
 # the study axes of the motions (a dimension of its own when alone; else zipped as MEMBER)
 MOTION_AXES = ("seed", "record", *(GROUND + key for key in ("seed", "name", "path")))
-MAGNITUDE_DIGITS = 4  # decimals of a drawn magnitude
-DISTANCE_STEP = 1.0  # m: drawn distances are rounded to this
 
 Stripe = namedtuple("Stripe", "level seeds magnitudes distances")
 Stripe.__doc__ = """The motions of one stripe: IM ``level`` [SI], and per motion its seed,
@@ -46,22 +44,11 @@ magnitude and Rrup [m]; for records (:func:`record_plan`) ``seeds`` and ``magnit
 None and ``distances`` holds the records."""
 
 
-def _distinct(values, draw, rounding, rng, tries=100):
-    """``values`` rounded, redrawn (``draw(count, rng)``) where a value repeats: the study
-    schema wants distinct values along an axis."""
-    values = rounding(values)
-    for _ in range(tries):
-        _, first = np.unique(values, return_index=True)
-        repeated = np.setdiff1d(np.arange(values.size), first)
-        if not repeated.size:
-            return values
-        values[repeated] = rounding(draw(repeated.size, rng))
-    raise RuntimeError("could not draw distinct values")
-
-
 def plan(levels, motions, seed, *, model=None, scenario=None):
     """The :class:`Stripe` s: earthquakes drawn from ``model``'s disaggregation at each level
-    (``SourceModel``), or ``scenario`` = (magnitude, Rrup [m]) for every motion."""
+    (``SourceModel``, with ``numpy.random.default_rng([seed, j])`` at level j), used as drawn
+    (two motions may share a magnitude or a distance: the zip's dimension is the motion), or
+    ``scenario`` = (magnitude, Rrup [m]) for every motion."""
     stripes = []
     for j, level in enumerate(levels):
         seeds = seed + j * motions + np.arange(motions)
@@ -69,15 +56,7 @@ def plan(levels, motions, seed, *, model=None, scenario=None):
             magnitudes = np.full(motions, float(scenario[0]))
             distances = np.full(motions, float(scenario[1]))
         else:
-            rng = np.random.default_rng([seed, j])
-            drawn = model.draw(level, motions, rng)
-            magnitudes = _distinct(drawn[:, 0], lambda n, r: model.draw(level, n, r)[:, 0],
-                                   lambda v: np.round(v, MAGNITUDE_DIGITS), rng)
-            distances = np.round(drawn[:, 1] / DISTANCE_STEP) * DISTANCE_STEP
-            if np.unique(distances).size > 1:
-                distances = _distinct(distances, lambda n, r: model.draw(level, n, r)[:, 1],
-                                      lambda v: np.round(v / DISTANCE_STEP) * DISTANCE_STEP,
-                                      rng)
+            magnitudes, distances = model.draw(level, motions, np.random.default_rng([seed, j])).T
         stripes.append(Stripe(float(level), seeds.tolist(), magnitudes.tolist(),
                               distances.tolist()))
     return stripes

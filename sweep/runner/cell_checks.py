@@ -14,7 +14,8 @@ import numpy as np
 from ..io import study_grid, study_schema, vocabulary
 from ..io.plausibility import ReadsAsG, levels_read_in_si, scene_doubts
 from ..io.problems import FileProblems, Problem
-from ..io.scene_schema import load_scene, resolve_scene
+from ..io.scene_schema import resolve_scene
+from ..io.study_cells import CellScenes
 
 # Grids up to CHECK_ALL_CELLS cells have every cell's scene checked; larger ones, each value of
 # every dimension (at most CHECKED_PER_DIM of them: both ends and a seeded sample) with the other
@@ -113,10 +114,10 @@ def findings(study, picks, limit=50, with_doubts=True):
     ``(position, cell)`` of ``picks`` (positions in :func:`checked_cells`), in their order,
     up to the cell that brings the distinct problems found to ``limit`` (no cell after it
     can be among the first ``limit`` problems of all cells: :func:`combined`)."""
-    out, seen = [], set()
+    out, seen, scenes = [], set(), CellScenes(study)
     for position, index in picks:
         try:
-            scene = load_scene(study_grid.cell_scene(study, index), base_dir=study.base_dir)
+            scene = scenes.scene(index)
             resolved = resolve_scene(scene)
         except FileProblems as err:
             problems = [_located(study, index, p) for p in err.problems]

@@ -1,8 +1,9 @@
 """Cells of a study to results: scenes to kernel rows, one compiled call per chunk.
 
 ``run_chunk`` knows nothing of ranks or files (the mpi4py demos' ``mandelbrot_line``): it
-builds each cell's scene (``grid.cell_scene``), checks and resolves it into SI
-(``io.scene_schema``), packs it into a scene record (``kernels.api.scene_row``), runs the
+takes each cell's checked scene (``io.study_cells``: the base scene and each axis value
+checked once), resolves it into SI and packs it into a scene record once
+(``io.scene_schema.resolve_and_pack``), runs the
 whole chunk in one ``kernels.api.run_cells`` call and turns the result records into the
 per-cell arrays of ``cf.VARIABLES``.  A :class:`ChunkRunner` does the same for the chunks of
 one study on one rank, keeping the study's records (``kernels.record_cache``, and their copy
@@ -17,15 +18,15 @@ from pathlib import Path
 
 import numpy as np
 
-from kernels import api, codes
+from kernels import api, codes, gpu
 from kernels.record_cache import RecordCache
 
 from .. import cf
 from ..bodies import body_constants, body_sides, single_shock_velocity, west_acceleration
 from ..io.problems import FileProblems
-from ..io.scene_schema import load_scene, resolve_scene
+from ..io.scene_schema import load_scene, resolve_and_pack
+from ..io.study_cells import CellScenes
 from ..groundmotion import applied
-from . import grid
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
@@ -36,11 +37,13 @@ WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
 CELL_BUDGET = 300.0  # s of wall time one cell may run before it is stopped (run_chunk)
 
 
-def build_rows(study, cells, records=None):
+def build_rows(study, cells, records=None, scenes=None):
     """Kernel rows, record buffer, bodies and horizontal motions of some cells.
 
     The cells' records are placed in ``records``, a ``kernels.record_cache.RecordCache`` (a
-    record used by many cells is stored once; default: a new one for these cells).
+    record used by many cells is stored once; default: a new one for these cells).  Their
+    checked scenes come from ``scenes``, the study's ``io.study_cells.CellScenes`` (default:
+    a new one), each resolved and packed once.
 
     Returns
     -------
@@ -61,12 +64,11 @@ def build_rows(study, cells, records=None):
     bodies = np.empty((len(cells), 5))
     motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
     records = RecordCache() if records is None else records
+    scenes = CellScenes(study) if scenes is None else scenes
     problems = {}
     for k, index in enumerate(cells):
         try:
-            resolved = resolve_scene(load_scene(grid.cell_scene(study, int(index)),
-                                                base_dir=study.base_dir))
-            rows[k] = api.scene_row(resolved, records)
+            resolved, rows[k] = resolve_and_pack(scenes.scene(int(index)), records)
         except (FileProblems, ValueError) as err:
             rows[k], bodies[k], problems[k] = np.nan, np.nan, str(err)
             continue
@@ -75,6 +77,26 @@ def build_rows(study, cells, records=None):
                      *((np.nan, np.nan) if body["G"] is None else body["G"]))
         motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
     return rows, records.buffer(), bodies, motions, problems
+
+
+def _body_scales(bodies):
+    """West's acceleration g tan(alpha), v_H and p (one number per body: the smaller side's,
+    ``sweep.bodies``) and the angles alpha_1, alpha_2 of each body of ``build_rows``, each
+    computed once per distinct body (rows equal byte for byte)."""
+    ids = {}
+    inverse = np.array([ids.setdefault(row.tobytes(), len(ids)) for row in bodies], np.intp)
+    distinct = bodies[np.unique(inverse, return_index=True)[1]]
+    B, H = distinct[:, 0], distinct[:, 1]
+    i_g = [None if np.isnan(i) else i for i in distinct[:, 2]]
+    centre = [None if np.isnan(x) else (x, y) for x, y in distinct[:, 3:]]
+    sides = [body_sides(*body) for body in zip(B, H, centre, i_g)]
+    west = [west_acceleration(b, h, centre=c) for b, h, c in zip(B, H, centre)]
+    v_H = [single_shock_velocity(b, h, i, centre=c) for b, h, i, c in zip(B, H, i_g, centre)]
+    p = [body_constants(b, h, i).p if c is None else (s.p1 if s.alpha_1 <= s.alpha_2 else s.p2)
+         for b, h, i, c, s in zip(B, H, i_g, centre, sides)]
+    alpha_1, alpha_2 = [s.alpha_1 for s in sides], [s.alpha_2 for s in sides]
+    return [np.array(x, dtype=np.float64).reshape(-1)[inverse]
+            for x in (west, v_H, p, alpha_1, alpha_2)]
 
 
 def summarize(results, bodies, motions):
@@ -87,19 +109,7 @@ def summarize(results, bodies, motions):
     outcome = np.where(failed, codes.FAILED,
                        np.where(overturned, codes.OVERTURN,
                                 np.where(theta > 0, codes.ROCKED, codes.NO_ROCKING)))
-    B, H = bodies[:, 0], bodies[:, 1]
-    i_g = [None if np.isnan(i) else i for i in bodies[:, 2]]
-    centre = [None if np.isnan(x) else (x, y) for x, y in bodies[:, 3:]]
-    sides = [body_sides(*body) for body in zip(B, H, centre, i_g)]
-    # one number per body: the smaller side's (sweep.bodies), g tan(alpha), v_H and p
-    west = np.array([west_acceleration(b, h, centre=c) for b, h, c in zip(B, H, centre)],
-                    dtype=np.float64).reshape(-1)
-    v_H = np.array([single_shock_velocity(b, h, i, centre=c)
-                    for b, h, i, c in zip(B, H, i_g, centre)], dtype=np.float64).reshape(-1)
-    p = np.array([body_constants(b, h, i).p if c is None else
-                  (s.p1 if s.alpha_1 <= s.alpha_2 else s.p2)
-                  for b, h, i, c, s in zip(B, H, i_g, centre, sides)],
-                 dtype=np.float64).reshape(-1)
+    west, v_H, p, alpha_1, alpha_2 = _body_scales(bodies)
     pga, pgv, pgd, d5_95 = motions.T
     out = {
         "outcome": outcome,
@@ -122,8 +132,7 @@ def summarize(results, bodies, motions):
         "slid": np.where(failed, -1, results["max_slip"] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
-        "alpha_1": np.array([s.alpha_1 for s in sides], dtype=np.float64).reshape(-1),
-        "alpha_2": np.array([s.alpha_2 for s in sides], dtype=np.float64).reshape(-1),
+        "alpha_1": alpha_1, "alpha_2": alpha_2,
     }
     return {name: np.ascontiguousarray(a, dtype=cf.VARIABLES[name].dtype)
             for name, a in out.items()}
@@ -132,7 +141,7 @@ def summarize(results, bodies, motions):
 class ChunkRunner:
     """``run_chunk(study, cells)`` for the chunks of one study on one rank: the study's records
     are stored once (``kernels.record_cache.RecordCache``) and, on the GPU, sent to device
-    memory once (``kernels.cuda_batch.DeviceRecords``).
+    memory once (``kernels.gpu.device_records``).
 
     Parameters
     ----------
@@ -140,26 +149,29 @@ class ChunkRunner:
         Seconds of wall time a cell may run before it is stopped (``time_budget``);
         None or 0: no limit (on the CPU: a GPU thread runs its cell to the end).
     backend : {"cpu", "cuda"}
-        Where the kernel runs: ``kernels.api.run_cells`` or ``kernels.cuda_batch.run_cells``.
+        Where the kernel runs: ``kernels.api.run_cells`` or ``kernels.gpu.run_cells``.
     """
 
     def __init__(self, *, budget=CELL_BUDGET, backend="cpu"):
         self.budget, self.backend = budget, backend
         self.records = RecordCache()
+        self.scenes = None  # the CellScenes of the study of the last chunk
         self.device = None  # the records' DeviceRecords, once a chunk ran on the GPU
 
     def __call__(self, study, cells):
         """Simulate some cells of ``study``: :func:`run_chunk`'s result."""
         cells = np.asarray(cells, dtype=np.int64).reshape(-1)
         self.records.restart_if_full()
-        rows, rec, bodies, motions, problems = build_rows(study, cells, self.records)
+        if self.scenes is None or self.scenes.study is not study:
+            self.scenes = CellScenes(study)
+        rows, rec, bodies, motions, problems = build_rows(study, cells, self.records,
+                                                          self.scenes)
         built = np.ones(cells.size, dtype=bool)
         built[list(problems)] = False
         results = api.not_run(cells.size)
         if self.backend == "cuda":
-            from kernels import cuda_batch
-            self.device = self.device or cuda_batch.DeviceRecords()
-            results[built] = cuda_batch.run_cells(rows[built], self.device.update(self.records))
+            self.device = self.device or gpu.device_records()
+            results[built] = gpu.run_cells(rows[built], self.device.update(self.records))
         else:
             results[built] = api.run_cells(rows[built], rec, budget=self.budget)
         for k, problem in problems.items():
@@ -217,7 +229,7 @@ def kernel_cached():
 
 def warm_up():
     """Compile (or load from the numba cache) the chunk kernel with a short scene."""
-    row = api.scene_row(resolve_scene(load_scene(WARM_UP_SCENE)), [])
+    _, row = resolve_and_pack(load_scene(WARM_UP_SCENE), [])
     api.run_cells(row, api.record_buffer([]))
     try:
         marker = _marker()

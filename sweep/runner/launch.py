@@ -19,13 +19,12 @@ import time
 import warnings
 from collections import namedtuple
 
-from .. import cf
-from ..io import study_schema
+from .. import cf, netcdf
 from ..io.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_OK
 from ..io.files import output_problem
 from ..io.problems import FileProblems, Problem
 from . import fingerprint, grid, interrupt, mpi, rank_checks, refine, store
-from .cell_checks import load_study
+from .cell_checks import cell_problems, load_study
 from .lock import LockHeld, OutputLock
 from .options import RunOptions
 from .progress import Progress
@@ -65,11 +64,18 @@ def _problems(path, err):
         say(f"  {line}", file=sys.stderr)
 
 
+def _study(source, options, *, text=None, output=None, cells=None):
+    """The study as every rank loads it (``cell_checks.load_study``: the run's output and
+    limit on cells); its cells' scenes checked with ``cells`` (rank 0), else not."""
+    return load_study(source, text=text, output=output or options.output,
+                      max_cells=options.max_cells, check_cells=cells is not None, cells=cells)
+
+
 def _load(comm, path, options):
     """The checked study and its writable output, or :class:`FileProblems`; the cells'
     checks shared by the ranks (``rank_checks``)."""
-    study = load_study(path, output=options.output, max_cells=options.max_cells,
-                       cells=rank_checks.shared(comm) if comm.Get_size() > 1 else None)
+    study = _study(path, options, cells=rank_checks.shared(comm) if comm.Get_size() > 1
+                   else cell_problems)
     why = output_problem(study.output)
     if why is not None:
         raise FileProblems([Problem("output" if options.output is None else "-o/--output",
@@ -81,8 +87,8 @@ def _backend_problem(study, options):
     """Why the study's cells cannot run where they are asked to (on CUDA), or None."""
     if options.backend_of(study) != "cuda":
         return None
-    from kernels.api import cuda_unavailable
-    return cuda_unavailable()
+    from kernels import gpu
+    return gpu.unavailable()
 
 
 def _backend_refused(path, study, options):
@@ -322,7 +328,7 @@ def _write(study, result, history, stamp, parts):
     if study.refine:
         ds = _dataset(study, result, history)
         ds.attrs.update(stamped)
-        store.write_netcdf(ds, study.output)
+        netcdf.write_netcdf(ds, study.output)
     else:
         store.write_merged(study, result, study.output, history=history, attrs=stamped)
     parts.remove()
@@ -447,8 +453,7 @@ def _run(comm, path, options, state):
             raise Refused(path)
         return
     if state.study is None:
-        state.study = study_schema.load_study(plan.source, text=plan.text,
-                                              output=plan.output, max_cells=None)
+        state.study = _study(plan.source, options, text=plan.text, output=plan.output)
     if rank and not warm:
         warm_up()  # loads what rank 0 compiled into the cache
     study = state.study

@@ -1,4 +1,4 @@
-"""Part files, resume, merge, clean-up and the atomic netCDF write.
+"""Part files, resume, merge, clean-up and the atomic write of a study's merged dataset.
 
 Each finished chunk becomes one part file ``part-<first cell>.npz`` in ``<output>.parts/``,
 written under a temporary name, flushed to disk and renamed (``os.replace`` is atomic): a part
@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import cf
+from .. import cf, netcdf
 from ..io.files import TMP_MARK, replacing, write_atomic
 from . import fingerprint
 from .merged import MergedParts, packed, placeholder
@@ -279,7 +279,7 @@ def write_merged(study, merged, path, *, history=None, attrs=None):
 
     xarray writes the whole file, its first group of variables read (``merged.groups``) and
     the others as placeholders (``merged.placeholder``): the file's variables, order, encoding
-    and attributes are those of :func:`write_netcdf`.  netCDF4 then writes each other group
+    and attributes are those of ``netcdf.write_netcdf``.  netCDF4 then writes each other group
     into its variables, read one group at a time (``merged`` holds one group: the first stays
     held until the second is read, so a summary of its variables costs no further read).
 
@@ -325,7 +325,7 @@ def _write_first(study, merged, tmp, history, attrs):
               for name in cf.VARIABLES}
     ds = cf.to_dataset(study, arrays, history=history)
     ds.attrs.update(attrs)
-    ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=cf.encoding(ds))
+    netcdf.to_netcdf(ds, tmp)
     return set(ds.data_vars)
 
 
@@ -333,11 +333,3 @@ def _fill(nc, arrays):
     """Write per-cell arrays into the variables of an open netCDF4 Dataset."""
     for name, a in arrays.items():
         nc[name][...] = a.reshape(nc[name].shape)
-
-
-def write_netcdf(ds, path):
-    """Write a Dataset of the package (a study's, a scene's history) to ``path`` atomically:
-    a temporary file in the same folder, flushed and renamed; encoding ``cf.encoding``."""
-    with replacing(path) as tmp:
-        ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=cf.encoding(ds))
-    return Path(path)

@@ -128,7 +128,7 @@ SYNTHETIC = {"horizontal": {"kind": "synthetic", "model": "boore2003", "magnitud
 def rock_study(tmp_path_factory):
     """8 synthetic motions at 3 PGA levels on a rock of alpha 14 and 17 deg: its dataset
     and the file it is written to."""
-    from sweep.runner.store import write_netcdf
+    from sweep.netcdf import write_netcdf
 
     study = {"name": "rock", "scene": {"body": ROCK, "contact": {"mu": 0.8},
                                        "excitation": SYNTHETIC},

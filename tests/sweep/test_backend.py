@@ -8,12 +8,12 @@ import xarray as xr
 from study_helpers import cli, write_study
 
 import sweep
-from kernels.api import cuda_unavailable
+from kernels import gpu
 from sweep.io.problems import FileProblems
 from sweep.io.study_schema import load_study
 from sweep.runner.options import RunOptions
 
-NO_CUDA = pytest.mark.skipif(cuda_unavailable() is None, reason="this machine can run CUDA")
+NO_CUDA = pytest.mark.skipif(gpu.unavailable() is None, reason="this machine can run CUDA")
 
 
 @pytest.mark.parametrize("run, said", [

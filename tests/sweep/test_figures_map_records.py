@@ -14,7 +14,7 @@ import sweep
 from sweep import plot
 from sweep.plots.map import figure_map
 from sweep.plots.style import OUTCOME_COLOURS
-from sweep.runner.store import write_netcdf
+from sweep.netcdf import write_netcdf
 
 RECORDS = ["elcentro1940_ns", "taft1952_ew_s69e"]
 RECORD_SCENE = {"body": {"B": 0.2, "H": 0.8}, "contact": {"mu": 0.8, "e_x": -0.8, "e_y": 0.2},

@@ -7,7 +7,7 @@ import pytest
 import xarray as xr
 from study_helpers import without_run_attrs
 
-from sweep import cf
+from sweep import cf, netcdf
 from sweep.runner import grid, merged, store
 
 
@@ -39,7 +39,7 @@ def test_streamed_write_is_the_in_memory_write(study, whole, tmp_path, divisor, 
                                   attrs={"extra": "x"})
     ds = cf.to_dataset(study, store.merge([whole], n), history="h")
     ds.attrs["extra"] = "x"
-    memory = store.write_netcdf(ds, tmp_path / "memory.nc")
+    memory = netcdf.write_netcdf(ds, tmp_path / "memory.nc")
     assert _structure(streamed) == _structure(memory)
     with xr.open_dataset(streamed) as a, xr.open_dataset(memory) as b:
         assert without_run_attrs(a.load()).identical(without_run_attrs(b.load()))

@@ -18,7 +18,7 @@ from sweep.io.scene_schema import MAX_HISTORY, resolve_scene
 from sweep.plots.map import figure_map
 from sweep.plots.scene import draw_scene
 from sweep.runner.simulate import JSON_KEYS, simulate, to_json_dict
-from sweep.runner.store import write_netcdf
+from sweep.netcdf import write_netcdf
 
 matplotlib.use("Agg")
 

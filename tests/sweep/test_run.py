@@ -166,8 +166,8 @@ def test_unusable_outputs_are_refused_before_any_work(tmp_path, small_study, out
 
 
 def test_backend_cuda_without_a_gpu_is_refused_before_any_work(tmp_path, small_study):
-    from kernels.api import cuda_unavailable
-    if cuda_unavailable() is None:
+    from kernels import gpu
+    if gpu.unavailable() is None:
         pytest.skip("this machine can run the CUDA kernel")
     study = write_study(tmp_path / "s.yaml", dict(small_study, output="r.nc"))
     done = cli([study, "--backend", "cuda"], cwd=tmp_path, timeout=60)

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from kernels.api import DEFAULTS
-from sweep.io.scene_schema import apply_overrides, load_scene, resolve_scene
+from sweep.io.scene_schema import load_scene, resolve_scene
+from sweep.io.study_grid import apply_overrides
 from sweep.io.problems import FileProblems
 
 G = 9.80665

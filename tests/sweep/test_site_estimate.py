@@ -16,7 +16,7 @@ import yaml
 from sweep import estimate
 from sweep.io.bodies_schema import load_survey
 from sweep.plots.site import figure_site
-from sweep.probability import site, site_report, site_studies
+from sweep.probability import site, site_bodies, site_posterior, site_report, site_studies
 from study_helpers import cli
 
 G = 9.80665
@@ -33,10 +33,10 @@ RATIOS = np.array([0.1, 0.2])  # PGV/PGA of the two members [s]
 
 
 def test_posterior_of_two_members_by_hand():
-    consistent = site.consistency(ONE_BODY, [True])
-    np.testing.assert_array_equal(site.likelihood(consistent)[0], [0, 0.5, 1, 1])
-    post = site.posterior(np.exp(U), consistent, np.exp(U)[:, None] * RATIOS,
-                          [0.05, 0.5, 0.95])
+    consistent = site_posterior.consistency(ONE_BODY, [True])
+    np.testing.assert_array_equal(site_posterior.likelihood(consistent)[0], [0, 0.5, 1, 1])
+    post = site_posterior.posterior(np.exp(U), consistent, np.exp(U)[:, None] * RATIOS,
+                                    [0.05, 0.5, 0.95])
     # Z = int L du = 1/4 + 3/4 + 1 = 2: masses 1/8, 3/8, 1/2 on the three segments.
     # 5 %: u^2/8 = 0.05 on the first; 50 %: 1/8 + (u/2 + u^2/4)/2 = 1/2 -> u = 1 on the
     # second (u = 2 in all); 95 %: 1/2 + u/2 = 0.95 -> u = 0.9 on the third.
@@ -53,19 +53,20 @@ def test_posterior_of_two_members_by_hand():
 def test_body_bounds_by_hand():
     x, p = np.exp(U), np.array([0, 0.5, 1, 1])
     # overturned: P crosses 0.05 at u = 0.1, 0.5 at u = 1, 0.95 at u = 1.9
-    lows = [site.body_bound(x, p, q, overturned=True) for q in (0.05, 0.5, 0.95)]
+    lows = [site_bodies.body_bound(x, p, q, overturned=True) for q in (0.05, 0.5, 0.95)]
     np.testing.assert_allclose(np.log([b.value for b in lows]), [0.1, 1.0, 1.9], rtol=1e-12)
     # standing: survival 1 - P falls through 0.05 at u = 1.9, through 0.95 at u = 0.1
-    highs = [site.body_bound(x, p, q, overturned=False) for q in (0.05, 0.95)]
+    highs = [site_bodies.body_bound(x, p, q, overturned=False) for q in (0.05, 0.95)]
     np.testing.assert_allclose(np.log([b.value for b in highs]), [1.9, 0.1], rtol=1e-12)
     # West's knot at u = 0.5: P = 0 there, so 5 % is reached at u = 0.5 + 0.1 * 0.5
-    floored = site.body_bound(x, p, 0.05, overturned=True, west=math.exp(0.5))
+    floored = site_bodies.body_bound(x, p, 0.05, overturned=True, west=math.exp(0.5))
     assert math.log(floored.value) == pytest.approx(0.55, rel=1e-12)
     # outside the levels: said so
     rare = np.array([0, 0, 0, 0.5])
-    assert site.body_bound(x, rare, 0.95, overturned=True) == site.Bound(None, "above")
-    assert site.body_bound(x, rare, 0.05, overturned=False) == site.Bound(None, "above")
-    assert site.body_bound(x, np.ones(4), 0.5, overturned=True) == site.Bound(1.0, "below")
+    bound, Bound = site_bodies.body_bound, site_bodies.Bound
+    assert bound(x, rare, 0.95, overturned=True) == Bound(None, "above")
+    assert bound(x, rare, 0.05, overturned=False) == Bound(None, "above")
+    assert bound(x, np.ones(4), 0.5, overturned=True) == Bound(1.0, "below")
 
 
 # --- (2) joint likelihood, not the product of marginals ---------------------------------------
@@ -80,14 +81,14 @@ def test_joint_likelihood_is_not_the_product_of_marginals():
     o = (levels[:, None] >= threshold[None, :]).astype(float)
     pair = np.stack([o, o])
     p = o.mean(axis=1)
-    mixed, _ = site.likelihood(site.consistency(pair, [True, False]))
-    both, _ = site.likelihood(site.consistency(pair, [True, True]))
+    mixed, _ = site_posterior.likelihood(site_posterior.consistency(pair, [True, False]))
+    both, _ = site_posterior.likelihood(site_posterior.consistency(pair, [True, True]))
     np.testing.assert_array_equal(mixed, 0.0)
     assert np.max(p * (1 - p)) > 0.2
     np.testing.assert_allclose(both, p)
     assert np.max(np.abs(both - p * p)) > 0.2
-    assert site.posterior(levels, site.consistency(pair, [True, False]), o + 1.0,
-                          [0.5]) is None
+    assert site_posterior.posterior(levels, site_posterior.consistency(pair, [True, False]),
+                                    o + 1.0, [0.5]) is None
 
 
 # --- (3) a deterministic ensemble -------------------------------------------------------------
@@ -128,7 +129,7 @@ def test_identical_members_give_zero_one_and_bracketing_bounds():
     assert np.all((result.posterior.pga >= levels[2]) & (result.posterior.pga <= levels[6]))
     assert not result.posterior.cut_below and not result.posterior.cut_above
     # 3 members x 3 levels reproduce both bodies: enough for percentiles
-    assert result.support == site.Support(9, 27, 3, 9, (levels[2], levels[6]))
+    assert result.support == site_posterior.Support(9, 27, 3, 9, (levels[2], levels[6]))
     assert result.quantiles is not None
 
 
@@ -159,7 +160,7 @@ def test_percentiles_on_one_matching_simulation_are_withheld():
     names the levels around x_3."""
     survey, x, result = _survey_of_steps(fallen=(3, 5, 7), stood=(4, 5, 7))
     np.testing.assert_array_equal(result.likelihood, [0, 0, 0, 1 / 3, 0, 0, 0, 0, 0])
-    assert result.support == site.Support(1, 27, 1, 9, (x[2], x[4]))
+    assert result.support == site_posterior.Support(1, 27, 1, 9, (x[2], x[4]))
     assert not result.support.sufficient and result.quantiles is None
     assert result.posterior is not None  # the density is still there to be drawn
     text = site_report.format_text(result)

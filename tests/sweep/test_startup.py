@@ -65,8 +65,8 @@ def test_a_rank_with_numba_imported_still_compiles():
     from ``NUMBA_NUM_THREADS=2``) before the runner says so, a later compilation (a cold
     kernel cache) must not meet a changed ``NUMBA_NUM_THREADS``, which numba refuses."""
     code = ("import numba\n"
-            "from sweep.runner import mpi\n"
-            "mpi._threads_off()\n"
+            "from sweep.runner.mpi import communicator\n"
+            "communicator._threads_off()\n"
             "print(numba.njit(lambda x: x + 1)(1), numba.get_num_threads())\n")
     env = {**os.environ, "NUMBA_NUM_THREADS": "2", "PYTHONPATH": str(ROOT)}
     ran = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,

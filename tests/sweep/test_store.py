@@ -7,7 +7,7 @@ import xarray as xr
 from study_helpers import make_study, without_run_attrs
 
 from kernels import codes
-from sweep import cf
+from sweep import cf, netcdf
 from sweep.runner.cell_checks import load_study
 from sweep.runner import grid, store
 from sweep.runner.cells import run_chunk
@@ -80,7 +80,7 @@ def test_output_refused_without_force(tmp_path):
 
 def test_netcdf_round_trip_contract(study, whole, tmp_path):
     ds = cf.to_dataset(study, store.merge([whole], study.n_cells))
-    path = store.write_netcdf(ds, tmp_path / "sub" / "r.nc")
+    path = netcdf.write_netcdf(ds, tmp_path / "sub" / "r.nc")
     assert sorted(p.name for p in path.parent.iterdir()) == ["r.nc"]  # no temporary left
     back = xr.open_dataset(path)
     dims = ("amplitude", "frequency", "b_over_h")
