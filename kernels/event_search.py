@@ -1,5 +1,6 @@
-"""Where the first event of a taken step lies (scipy's ``find_active_events`` and
-``handle_events`` for this kernel).
+"""Where the first event of a taken step lies.
+
+This kernel's counterpart of scipy's ``find_active_events`` and ``handle_events``.
 
 Each event function is tested at the step's end or, when the step holds a turning point
 (omega or a vertical velocity changes sign), at a third, two thirds and the end: an event

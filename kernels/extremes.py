@@ -1,7 +1,8 @@
-"""The extremes a scene reports: max |theta|, the base's slip along the floor, G's travel
-|x - x0| and max lift (the gap under the lowest corner in flight), observed at the ends of
-steps and at the turning points inside them, where a rate (omega, u, the lowest corner's V_y)
-changes sign.
+"""The extremes a scene reports: max |theta|, slip, travel and lift, inside steps too.
+
+Max |theta|, the base's slip along the floor, G's travel |x - x0| and max lift (the gap under
+the lowest corner in flight), observed at the ends of steps and at the turning points inside
+them, where a rate (omega, u, the lowest corner's V_y) changes sign.
 
 The base's slip is that of its footprint (``footprint``): where the middle of the base would
 be, were the body set down flat about the corner it stands on.  Rocking about a corner leaves

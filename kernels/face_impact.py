@@ -1,5 +1,7 @@
-"""Impact with the face flat, theta = 0: the landing after a translation jump and the
-rocking impact of the other corner (docs/physics.md 2.1-2.3, docs/landing.md).
+"""Impact with the face flat, theta = 0: the landing after a jump and the rocking impact.
+
+The landing after a translation jump and the rocking impact of the other corner
+(docs/physics.md 2.1-2.3, docs/landing.md).
 
 Both corners get Newton's normal target -e_y V_n- (0 for a corner not approaching); the
 total tangential impulse acts at the height -h below G.  The two-contact solution is taken

@@ -1,5 +1,4 @@
-"""One explicit Runge-Kutta step on a mode's compact state, its dense output, and the
-step-size controller.
+"""One explicit Runge-Kutta step on a mode's compact state, its dense output, step-size control.
 
 ``step`` and ``fit_dense`` run the method's ``Tableau`` (``tableaus``) as a module constant,
 so that its coefficients are constants of the compiled code, which skips the terms of zero

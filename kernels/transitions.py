@@ -1,6 +1,7 @@
-"""The mode table: which mode a body is in, and what each event leads to (docs/physics.md 1.3,
-2 and 3.1).  Modes are the paper's six motion types (``codes``); events are those of
-``events``.
+"""The mode table: which mode a body is in, and what each event leads to.
+
+Modes are the paper's six motion types (``codes``), events those of ``events`` (docs/physics.md
+1.3, 2 and 3.1).
 
 =================  ================  ===========================  ========================
 mode               event             law                          next mode

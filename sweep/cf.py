@@ -1,5 +1,6 @@
-"""Every dataset the package writes (docs/design.md section 6): one metadata table, the Dataset
-builders, one encoding.
+"""Every dataset the package writes: one metadata table, the Dataset builders, one encoding.
+
+The datasets are those of docs/design.md section 6.
 
 The table describes each variable once as a :class:`Variable` (dtype, CF ``units`` and
 ``long_name``, flags for integer codes from ``kernels.codes``, extra dimensions, comment), in

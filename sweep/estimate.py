@@ -1,5 +1,6 @@
-"""``python -m sweep.estimate BODIES.yaml``: what bodies seen overturned and standing at sites
-tell of the peak ground motion there.
+"""``python -m sweep.estimate BODIES.yaml``: what bodies seen at sites tell of the shaking there.
+
+Bodies seen overturned and standing at sites bound the peak ground motion there.
 
     python -m sweep.estimate BODIES.yaml [--json] [--csv FILE] [-o FIG.png]
     python -m sweep.estimate BODIES.yaml --write-study DIR

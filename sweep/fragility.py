@@ -1,5 +1,7 @@
-"""``python -m sweep.fragility RESULT.nc --over seed --im pga``: probabilities of overturning
-over a study's ensemble, lognormal fragility fits, curves and (PGA, PGV) maps.
+"""``python -m sweep.fragility RESULT.nc``: fragility of overturning over a study's ensemble.
+
+``--over seed --im pga``: probabilities of overturning over the ensemble, lognormal fragility
+fits, curves and (PGA, PGV) maps.
 
 For every body (each combination of the dimensions that are neither ensemble nor levels) the
 probabilities of overturning, rocking and sliding at each level with their intervals, and

@@ -1,6 +1,7 @@
-"""Writing a dataset of the package (``cf``'s builders) to a netCDF file: NETCDF4 through
-netCDF4 with ``cf.encoding``, and a whole file atomically (a temporary file in the same
-folder, flushed and renamed: a reader never sees half a file)."""
+"""A dataset of the package written to a netCDF file with ``cf.encoding``, atomically.
+
+The dataset comes from ``cf``'s builders, the file is NETCDF4 through netCDF4, written whole (a
+temporary file in the same folder, flushed and renamed: a reader never sees half a file)."""
 from pathlib import Path
 
 from . import cf

@@ -1,5 +1,6 @@
-"""``python -m sweep.run STUDY.yaml``: run a study over MPI ranks into one labelled netCDF
-dataset (docs/design.md sections 5-7).
+"""``python -m sweep.run STUDY.yaml``: run a study over MPI ranks into one netCDF dataset.
+
+The study file, the run and the labelled dataset are those of docs/design.md sections 5-7.
 
     python -m sweep.run STUDY.yaml [--dry-run] [--force] [--quiet] [--chunk-size N]
                                    [--seed N] [-o OUTPUT.nc] [--max-cells N]

@@ -1,6 +1,7 @@
-"""``python -m sweep.scene SCENE.yaml [--json | --summary] [--plot out.png] [--animate out.gif]
-[--fps N] [--from S] [--to S] [--history out.nc]``: run one scene and show what the body did,
-the verdict first."""
+"""``python -m sweep.scene SCENE.yaml``: run one scene and show what the body did, verdict first.
+
+Usage: ``python -m sweep.scene SCENE.yaml [--json | --summary] [--plot out.png] [--animate
+out.gif] [--fps N] [--from S] [--to S] [--history out.nc]``."""
 import math
 import sys
 from pathlib import Path

@@ -1,4 +1,4 @@
-"""Started by ``tests/sweep/test_mpi.py`` under ``mpiexec -n 2`` (schwimmbad's CI pattern).
+"""Started by ``tests/sweep/runner/test_mpi.py`` under ``mpiexec -n 2`` (schwimmbad's CI pattern).
 
     mpiexec -n 2 python tests/mpi_two_ranks.py run STUDY OUT_DIR   # two runs: chunks of 3, 7
     mpiexec -n 2 python tests/mpi_two_ranks.py abort               # rank 1 raises

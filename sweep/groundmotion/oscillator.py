@@ -1,5 +1,7 @@
-"""The damped single-degree-of-freedom oscillator under a ground acceleration, and the
-pseudo-spectral acceleration of a motion.
+"""The damped SDOF oscillator under a ground acceleration, and Sa(T) of a motion.
+
+Sa(T) is the pseudo-spectral acceleration of the single-degree-of-freedom oscillator of period
+T.
 
 u'' + 2 zeta omega u' + omega^2 u = p, u relative to the ground, from rest, with p = -a_g
 piecewise linear between the samples, is integrated exactly by the recursion of Nigam &

@@ -1,2 +1,4 @@
-"""Input and output: YAML files, units, the scene, study and bodies schemas, ground-motion
-records, the problem formatter every file check reports through, and atomic writes."""
+"""Input and output: files, units, schemas, records, problems and atomic writes.
+
+YAML files, units, the scene, study and bodies schemas, ground-motion records, the problem
+formatter every file check reports through, and atomic writes."""

@@ -1,5 +1,7 @@
-"""Bodies files of ``python -m sweep.estimate``: bodies seen overturned and standing at sites,
-and optionally the ensemble of motions the sites may have felt.
+"""Bodies files of ``python -m sweep.estimate``: bodies seen at sites, and an ensemble.
+
+Bodies seen overturned and standing at sites, and optionally the ensemble of motions the sites
+may have felt.
 
 A bodies file, with several sites::
 

@@ -1,6 +1,8 @@
-"""The exit statuses of every command (``python -m sweep.run``, ``sweep.scene``, ``sweep.plot``,
-``sweep.estimate``, ``sweep.fragility``, ``sweep.figures``, ...): the one table, so that a status
-means the same whichever command ends with it (docs/runner.md, "Exit statuses")."""
+"""The exit statuses of every command and the runner: the one table.
+
+A status means the same whichever command ends with it (``python -m sweep.run``,
+``sweep.scene``, ``sweep.plot``, ``sweep.estimate``, ``sweep.fragility``, ``sweep.figures``,
+...; docs/runner.md, "Exit statuses")."""
 
 EXIT_OK = 0  # done
 EXIT_FAILED = 1  # the work failed (a study's run, a rank stopped), said in words

@@ -1,5 +1,7 @@
-"""Fields shared by the input files' pydantic models: quantities with units and bounds, plain
-numbers, counts and seeds, and :class:`StrictModel`, the base of every section of a file."""
+"""Fields shared by the input files' pydantic models, and their base :class:`StrictModel`.
+
+Quantities with units and bounds, plain numbers, counts and seeds; :class:`StrictModel` is the
+base of every section of a file."""
 import sys
 from dataclasses import dataclass
 from typing import Annotated

@@ -1,5 +1,6 @@
-"""Files written whole or not at all: a temporary name in the same folder, then ``os.replace``;
-and the files a pattern of the user's finds.
+"""Files written whole or not at all, and the files a pattern of the user's finds.
+
+A file is written under a temporary name in the same folder, then moved with ``os.replace``.
 
 ``os.replace`` is atomic on one file system, so a reader (or a run that resumes after being
 killed) sees either the old file or the new one, never half of one.  Every file the package

@@ -1,5 +1,6 @@
-"""Names of intensity measures: ``pga``, ``pgv``, ``sa(T)`` (T the period in s), their
-dimension, and the names OpenQuake (``PGA``, ``SA(0.3)``) and the USGS (``SA0P3``) write."""
+"""Names of intensity measures (``pga``, ``pgv``, ``sa(T)``), their dimension, OpenQuake's names.
+
+T is the period in s; OpenQuake writes ``PGA``, ``SA(0.3)``, the USGS ``SA0P3``."""
 import re
 
 from ..bodies import G

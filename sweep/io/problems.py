@@ -1,5 +1,4 @@
-"""Problems of an input file, all reported at once: the one formatter of scene, study and
-bodies files.
+"""Problems of an input file, all reported at once: the one formatter of every input file.
 
 Every check of a file (YAML syntax, duplicate keys, pydantic models, cross-field rules)
 produces :class:`Problem` s: a dotted ``path`` (``grid.amplitude.num``, ``bodies[2].B``), the

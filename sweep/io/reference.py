@@ -1,5 +1,6 @@
-"""The reference of every key of scene, study, bodies and risk files, generated from their
-models.
+"""The reference of every key of the input files, generated from their models.
+
+Scene, study, bodies and risk files: docs/schema.md and the JSON Schemas.
 
 ``python -m sweep.io.reference [--json-schema] [--docs DIR]`` writes ``docs/schema.md``: for
 each section of each kind of file, every key with its type, the units a quantity takes

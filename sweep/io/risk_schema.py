@@ -1,5 +1,7 @@
-"""Risk files of ``python -m sweep.risk``: a site's hazard, a body (or a grid of bodies), the
-stripes of motions that give its fragility, the period and the target (docs/risk.md)::
+"""Risk files of ``python -m sweep.risk``: a hazard, a body, its stripes, period and target.
+
+A site's hazard, a body (or a grid of bodies), the stripes of motions that give its fragility,
+the period and the target (docs/risk.md)::
 
     name: risk_example
     hazard:

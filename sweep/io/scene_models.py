@@ -1,7 +1,9 @@
-"""The pydantic models of a scene file (docs/design.md section 4): body, contact, excitation
-(each kind of ground motion), initial state and solver; their validators do every check of a
-scene, the cross-field ones included.  Fields left out take ``kernels.api.DEFAULTS``;
-``sweep.io.scene_schema`` loads a file into them and resolves them into SI.
+"""The pydantic models of a scene file: body, contact, excitation, initial state and solver.
+
+The excitation is any kind of ground motion (docs/design.md section 4); the validators do every
+check of a scene, the cross-field ones included.  Fields left out take
+``kernels.api.DEFAULTS``; ``sweep.io.scene_schema`` loads a file into them and resolves them
+into SI.
 """
 import math
 from pathlib import Path

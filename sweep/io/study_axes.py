@@ -1,5 +1,6 @@
-"""The axes of a study, checked against the base scene and each other: the validators of
-``StudyFile`` (``sweep.io.study_schema``).
+"""The axes of a study, checked against the base scene and each other.
+
+The validators of ``StudyFile`` (``sweep.io.study_schema``).
 
 Each check returns what it builds (an :class:`Axis`, the zip groups, a :class:`Refine`) or
 raises :class:`~sweep.io.problems.FieldError` s whose ``field`` is the dotted path of the

@@ -19,7 +19,7 @@ from .vocabulary import MU_PATHS
 _MOTION_FIELDS = {"sine": ("amplitude", "frequency", "start", "duration"),
                   "sweep": ("amplitude", "f_start", "f_stop", "start", "duration")}
 _CONTACT = ("contact.mu", *MU_PATHS, "contact.e_x", "contact.e_y")
-_REFUSED = object()  # a value that does not check
+REFUSED = object()  # a value that does not check
 
 
 def alone(scene):
@@ -62,15 +62,15 @@ class CellScenes:
     def __init__(self, study):
         self.study = study
         self.keys = cell_overrides(study, 0).keys()   # the paths every cell sets
-        self.checked = {}  # (path, repr of the raw value) -> its checked value, or _REFUSED
+        self.checked = {}  # (path, repr of the raw value) -> its checked value, or REFUSED
         try:
             self.base = load_scene(cell_scene(study, 0), base_dir=study.base_dir)
         except FileProblems:
             self.base = None   # every cell is checked from its raw scene
         self.alone = self.base is not None and self.keys <= alone(self.base)
 
-    def _value(self, path, value):
-        """The checked value of one raw ``value`` at ``path`` (``_REFUSED``: it does not
+    def value(self, path, value):
+        """The checked value of one raw ``value`` at ``path`` (``REFUSED``: it does not
         check), checked in the scene of cell 0 with that value set."""
         key = (path, repr(value))
         if key not in self.checked:
@@ -79,15 +79,15 @@ class CellScenes:
                                    base_dir=self.study.base_dir)
                 self.checked[key] = _at(scene, path.split("."))
             except FileProblems:
-                self.checked[key] = _REFUSED
+                self.checked[key] = REFUSED
         return self.checked[key]
 
     def scene(self, index):
         """The checked scene of cell ``index``."""
         overrides = cell_overrides(self.study, index)
         if self.alone and overrides.keys() == self.keys:
-            values = {tuple(path.split(".")): self._value(path, value)
+            values = {tuple(path.split(".")): self.value(path, value)
                       for path, value in overrides.items()}
-            if not any(value is _REFUSED for value in values.values()):
+            if not any(value is REFUSED for value in values.values()):
                 return _put(self.base, values)
         return load_scene(cell_scene(self.study, index), base_dir=self.study.base_dir)

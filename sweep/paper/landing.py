@@ -1,6 +1,7 @@
-"""What a body does after landing from a translation jump (Ishiyama 1982, Fig. 5;
-docs/landing.md): every cell of a landing study classified as sliding, tilting forward or back
-and standing, or overturning forward or back, for ``sweep.plots.landing`` to draw.
+"""What a body does after landing from a translation jump (Ishiyama 1982, Fig. 5).
+
+Every cell of a landing study classified as sliding, tilting forward or back and standing, or
+overturning forward or back, for ``sweep.plots.landing`` to draw (docs/landing.md).
 
 "Forward" is the direction of the horizontal velocity at release: theta < 0 for x_dot >= 0
 (rotation about the right corner, docs/physics.md 1.1).  The dataset says whether and to which

@@ -1,6 +1,8 @@
-"""The landing figure (Ishiyama 1982, Fig. 5; docs/landing.md): the class of every cell of a
-landing study (``sweep.paper.landing``: slides, tilts forward or back and stands, overturns
-forward or back) drawn as a map, with our Fig. 5 panels or Fig. 5's landing velocity marked.
+"""The landing figure (Ishiyama 1982, Fig. 5): the class of every cell of a landing study.
+
+The classes of ``sweep.paper.landing`` (slides, tilts forward or back and stands, overturns
+forward or back) drawn as a map, with our Fig. 5 panels or Fig. 5's landing velocity marked
+(docs/landing.md).
 """
 import itertools
 import math

@@ -1,5 +1,6 @@
-"""Outcome maps of a study: one panel per value of the other axes, cells coloured by outcome;
-and the boundaries of a refine study.
+"""Outcome maps of a study, and the boundaries of a refine study.
+
+One panel per value of the other axes, cells coloured by outcome.
 
 Reads only the Dataset of ``sweep.run`` (``outcome`` with its ``flag_values`` and
 ``flag_meanings``, coordinates with ``units``, ``long_name`` and ``study_axis``).  By default

@@ -1,7 +1,9 @@
-"""Figures of a risk report (``sweep.probability.risk_report.RiskOutcome``): per body the
-hazard curve, the fragility with its band and the stripes' fractions, the risk integrand over
-the IM with the disaggregation of λ_O by segment, and the probability in ``years`` with its
-interval; over a grid of bodies the risk map with the contour of the target probability."""
+"""Figures of a risk report: per body its hazard, fragility and risk; the risk map of a grid.
+
+Per body (``sweep.probability.risk_report.RiskOutcome``) the hazard curve, the fragility with
+its band and the stripes' fractions, the risk integrand over the IM with the disaggregation of
+λ_O by segment, and the probability in ``years`` with its interval; over a grid of bodies the
+risk map with the contour of the target probability."""
 import numpy as np
 from matplotlib.colors import LogNorm
 

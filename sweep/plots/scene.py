@@ -1,6 +1,8 @@
-"""Pictures of one scene: successive positions of the body while it moves (the paper's
-Figs 3-5) beside theta/alpha, the floor acceleration of each moving component and the motion
-type, under a title that says what the body did (``runner.verdict``); and an animation.
+"""Pictures of one scene: the body's positions while it moves, with its histories; an animation.
+
+Successive positions (the paper's Figs 3-5) beside theta/alpha, the floor acceleration of each
+moving component and the motion type, under a title that says what the body did
+(``runner.verdict``).
 
 Every panel is scaled to its data: a floor component that is zero throughout gets no panel
 (a note says so), and the lines where the body tips over a corner, theta = alpha_1 and

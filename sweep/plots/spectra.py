@@ -1,5 +1,7 @@
-"""Rocking spectra (Makris & Konstantinidis 2003, EESD 32): peak |theta|/alpha of rectangular
-blocks under one floor motion against their frequency parameter p, one line per slenderness.
+"""Rocking spectra: peak |theta|/alpha of blocks under one motion against their p.
+
+After Makris & Konstantinidis (2003, EESD 32): rectangular blocks under one floor motion
+against their frequency parameter p, one line per slenderness.
 
 A study of bodies of several sizes under one motion (axes ``B`` or ``size`` with ``b_over_h``,
 e.g. ``studies/rocking_spectrum_elcentro.yaml``) is read like a response spectrum: p along x

@@ -1,7 +1,9 @@
-"""What the figures share: outcome colours, cell edges, log axes with plain numbers, the gal,
-the datasets a figure takes, saving a figure whole, and what keeps a figure readable: titles
-of at most two lines (:func:`fit_suptitle`), labels wrapped to their axes (:func:`fit_texts`)
-and legends in a corner free of data, else outside the axes (:func:`place_legend`).
+"""What the figures share: colours, cell edges, log axes, saving, and staying readable.
+
+Outcome colours, cell edges, log axes with plain numbers, the gal, the datasets a figure takes,
+saving a figure whole, and what keeps a figure readable: titles of at most two lines
+(:func:`fit_suptitle`), labels wrapped to their axes (:func:`fit_texts`) and legends in a
+corner free of data, else outside the axes (:func:`place_legend`).
 
 Only matplotlib's object interface is used here and in the figure modules; the backend is the
 caller's (``python -m sweep.plot`` and ``python -m sweep.scene`` choose ``Agg``).  Lengths of

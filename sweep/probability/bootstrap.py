@@ -1,5 +1,7 @@
-"""The bootstrap over ensemble members: resampling, the probit fit of many replicates at once,
-and bias-corrected and accelerated (BCa) intervals.
+"""The bootstrap over ensemble members, fitted all at once, with BCa intervals.
+
+Resampling, the probit fit of many replicates at once, and bias-corrected and accelerated (BCa)
+intervals.
 
 A member is one motion of the ensemble with its outcomes at every level (its k and n per
 level).  Members with the same outcomes form a *pattern* with a ``count``: a replicate draws

@@ -1,5 +1,7 @@
-"""Ground-motion models by name, from ``pygmm``: the median and the lognormal standard
-deviation of an intensity measure for a magnitude, distances and a site, in SI units.
+"""Ground-motion models by name, from ``pygmm``: the median and sigma of an IM, in SI units.
+
+The median and the lognormal standard deviation of an intensity measure for a magnitude,
+distances and a site.
 
 A source of this package is a point (or the points of an area) at a depth: the rupture is the
 point itself, so Rjb is the epicentral distance, Rrup = Rhyp = sqrt(Rjb² + depth²), Rx = Rjb,

@@ -1,5 +1,6 @@
-"""Hazard curve files read into a :class:`~sweep.probability.hazard_curve.HazardCurve`, and
-written:
+"""Hazard curve files: OpenQuake CSV, USGS JSON and two columns, read and written.
+
+Read into a :class:`~sweep.probability.hazard_curve.HazardCurve`, and written:
 
 * OpenQuake's ``hazard_curve-*.csv`` (:func:`read_openquake_csv`): a comment line with
   ``investigation_time`` and ``imt`` (in each form OpenQuake has written), then

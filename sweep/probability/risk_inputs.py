@@ -1,7 +1,9 @@
-"""The hazard of a risk file (``sweep.io.risk_schema``): a curve read from a file or computed
-from its source model, and the checks that need it (stripes inside the curve), made by the
-file's model (:func:`checked_hazard` in its validation context) and reported as problems of
-the file with their dotted paths."""
+"""The hazard of a risk file, and the checks that need it.
+
+A curve read from a file or computed from its source model (``sweep.io.risk_schema``), and the
+checks that need it (stripes inside the curve), made by the file's model
+(:func:`checked_hazard` in its validation context) and reported as problems of the file with
+their dotted paths."""
 from pathlib import Path
 
 import numpy as np

@@ -1,5 +1,6 @@
-"""A risk file worked through: hazard → stripes → fragility → risk, for one body or every body
-of a grid, and the results as JSON-ready dicts and a CF dataset (docs/risk.md).
+"""A risk file worked through: hazard → stripes → fragility → risk, as JSON and a CF dataset.
+
+For one body or every body of a grid (docs/risk.md).
 
 :func:`compute` takes a checked risk file (``sweep.io.risk_schema.RiskSpec``) and returns a
 :class:`RiskOutcome`; :func:`known` does the same for a hazard curve and a known lognormal

@@ -1,5 +1,6 @@
-"""What one body of a site tells of its shaking (``sweep.probability.site``, docs/probability.md
-section 6).
+"""What one body of a site tells of its shaking.
+
+A part of ``sweep.probability.site`` (docs/probability.md section 6).
 
 Fragility P_i(x_j) = fraction of the members that overturned it, with a 95 % Wilson interval;
 0 at and below its own West level a_o = (B/H) g (a knot, as in ``site_posterior``).  An

@@ -1,5 +1,6 @@
-"""The likelihood of a site's levels and their posterior (``sweep.probability.site``,
-docs/probability.md section 6).
+"""The likelihood of a site's levels and their posterior.
+
+A part of ``sweep.probability.site`` (docs/probability.md section 6).
 
 o_ijm in {0, 1} says whether body i overturned under member m of the ensemble scaled to level
 x_j; the bodies seen overturned (set O) bound the shaking from below, those left standing (set

@@ -1,5 +1,7 @@
-"""The site estimate (``sweep.probability.site``) in words and as JSON: the tables and sentences
-of ``python -m sweep.estimate``, in gal and cm/s, and the SI dict of its ``--json``.
+"""The site estimate in words (gal, cm/s) and as JSON (SI).
+
+The tables and sentences of ``python -m sweep.estimate`` and the dict of its ``--json``, from
+``sweep.probability.site``.
 """
 import math
 

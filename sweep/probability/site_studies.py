@@ -1,5 +1,7 @@
-"""The simulations behind a site estimate (``sweep.probability.site``): the bodies of a survey as
-specimens, one study per specimen under the ensemble, run or reused, their datasets read.
+"""The simulations behind a site estimate: one study per body, run or reused.
+
+The bodies of a survey as specimens (``sweep.probability.site``), one study per specimen under
+the ensemble, run or reused, their datasets read.
 
 Each distinct body (B, H, i_g, mu) is one study: levels x members, run as ``python -m
 sweep.run`` runs it, in this process (``runner.launch.run_file``; :func:`ensemble_datasets`),

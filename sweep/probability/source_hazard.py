@@ -1,5 +1,6 @@
-"""Hazard of point and area sources with a truncated Gutenberg-Richter recurrence, and its
-disaggregation by magnitude and distance.
+"""Hazard of point and area sources, truncated Gutenberg-Richter, and its disaggregation.
+
+The disaggregation is by magnitude and distance.
 
 The rate at which the intensity measure exceeds x at the site (Cornell 1968; McGuire 2004):
 

@@ -1,7 +1,9 @@
-"""Multiple stripe analysis (Jalayer & Cornell 2009, EESD 38; Baker 2015, Earthquake Spectra
-31): at each IM level of a stripe list, synthetic motions scaled to that level, the body (or
-the bodies of a grid) simulated under them, and the lognormal fragility fitted by maximum
-likelihood over the stripes with bootstrap intervals (``sweep.probability.fit``).
+"""Multiple stripe analysis: motions at each IM level, the body simulated, the fragility fitted.
+
+After Jalayer & Cornell (2009, EESD 38) and Baker (2015, Earthquake Spectra 31): at each IM
+level of a stripe list, synthetic motions scaled to that level, the body (or the bodies of a
+grid) simulated under them, and the lognormal fragility fitted by maximum likelihood over the
+stripes with bootstrap intervals (``sweep.probability.fit``).
 
 The motions of stripe j are Boore's (2003) stochastic motions (``sweep.groundmotion``) of
 earthquakes drawn from the disaggregation of the hazard at that level

@@ -1,5 +1,6 @@
-"""The cells' scenes of a study checked before any runs: each checked, resolved into SI and
-packed into a kernel row, as the run will.
+"""Every cell's scene of a study checked, resolved into SI and packed before any cell runs.
+
+Each is packed into a kernel row, as the run will.
 
 A problem that a cell's scene shows because of an axis value is reported once, at that value
 (``grid.amplitude[3]``), else once at the base scene (``scene.body.B``); values that are valid

@@ -1,9 +1,9 @@
 """Cells of a study to results: scenes to kernel rows, one compiled call per chunk.
 
 ``run_chunk`` knows nothing of ranks or files (the mpi4py demos' ``mandelbrot_line``): it
-takes each cell's checked scene (``io.study_cells``: the base scene and each axis value
-checked once), resolves it into SI and packs it into a scene record once
-(``io.scene_schema.resolve_and_pack``), runs the
+builds the chunk's scene records together from the axis values (``runner.cell_rows``: the
+base scene and each axis value checked once), or else resolves each cell's checked scene into
+SI and packs it once (``io.scene_schema.resolve_and_pack``), runs the
 whole chunk in one ``kernels.api.run_cells`` call and turns the result records into the
 per-cell arrays of ``cf.VARIABLES``.  A :class:`ChunkRunner` does the same for the chunks of
 one study on one rank, keeping the study's records (``kernels.record_cache``, and their copy
@@ -25,8 +25,8 @@ from .. import cf
 from ..bodies import body_constants, body_sides, single_shock_velocity, west_acceleration
 from ..io.problems import FileProblems
 from ..io.scene_schema import load_scene, resolve_and_pack
-from ..io.study_cells import CellScenes
 from ..groundmotion import applied
+from .cell_rows import CellRows
 
 # A scene that compiles the kernel in a fraction of a second once cached (warm-up).
 WARM_UP_SCENE = {"body": {"B": 0.1, "H": 0.3},
@@ -42,8 +42,9 @@ def build_rows(study, cells, records=None, scenes=None):
 
     The cells' records are placed in ``records``, a ``kernels.record_cache.RecordCache`` (a
     record used by many cells is stored once; default: a new one for these cells).  Their
-    checked scenes come from ``scenes``, the study's ``io.study_cells.CellScenes`` (default:
-    a new one), each resolved and packed once.
+    rows come from ``scenes``, the study's ``runner.cell_rows.CellRows`` (default: a new
+    one): built together as one array on the plain axes, else each cell's checked scene
+    resolved and packed once.
 
     Returns
     -------
@@ -64,11 +65,15 @@ def build_rows(study, cells, records=None, scenes=None):
     bodies = np.empty((len(cells), 5))
     motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
     records = RecordCache() if records is None else records
-    scenes = CellScenes(study) if scenes is None else scenes
+    scenes = CellRows(study) if scenes is None else scenes
+    together, built_bodies, built_motions, built = scenes.build(cells)
+    if built.any():
+        rows[built], bodies[built], motions[built] = (together[built], built_bodies[built],
+                                                      built_motions[built])
     problems = {}
-    for k, index in enumerate(cells):
+    for k in np.flatnonzero(~built):
         try:
-            resolved, rows[k] = resolve_and_pack(scenes.scene(int(index)), records)
+            resolved, rows[k] = resolve_and_pack(scenes.scenes.scene(int(cells[k])), records)
         except (FileProblems, ValueError) as err:
             rows[k], bodies[k], problems[k] = np.nan, np.nan, str(err)
             continue
@@ -155,7 +160,7 @@ class ChunkRunner:
     def __init__(self, *, budget=CELL_BUDGET, backend="cpu"):
         self.budget, self.backend = budget, backend
         self.records = RecordCache()
-        self.scenes = None  # the CellScenes of the study of the last chunk
+        self.scenes = None  # the CellRows of the study of the last chunk
         self.device = None  # the records' DeviceRecords, once a chunk ran on the GPU
 
     def __call__(self, study, cells):
@@ -163,7 +168,7 @@ class ChunkRunner:
         cells = np.asarray(cells, dtype=np.int64).reshape(-1)
         self.records.restart_if_full()
         if self.scenes is None or self.scenes.study is not study:
-            self.scenes = CellScenes(study)
+            self.scenes = CellRows(study)
         rows, rec, bodies, motions, problems = build_rows(study, cells, self.records,
                                                           self.scenes)
         built = np.ones(cells.size, dtype=bool)

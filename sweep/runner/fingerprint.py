@@ -29,7 +29,8 @@ _ROOT = Path(__file__).resolve().parents[2]
 PROGRAM_SOURCES = ("kernels/*.py", "sweep/bodies.py", "sweep/io/*.py", "sweep/io/formats/*.py",
                    "sweep/groundmotion/*.py",
                    "sweep/runner/grid.py", "sweep/runner/store.py", "sweep/runner/merged.py",
-                   "sweep/runner/cells.py", "sweep/paper/criteria.py", "sweep/cf.py",
+                   "sweep/runner/cells.py", "sweep/runner/cell_rows.py",
+                   "sweep/paper/criteria.py", "sweep/cf.py",
                    "sweep/netcdf.py")
 _RECORD_KEYS = ("name", "path")
 _EXCITATIONS = ("horizontal", "vertical")

@@ -189,13 +189,15 @@ def _plan(comm, path, options):
     return [start] * size, study, lock, first
 
 
-def _load_rest():
-    """What rank 0 loads while the other ranks compute their first chunks: the kernel (when
-    it was compiled before the run) and xarray for the merge."""
+def _load_rest(others):
+    """What rank 0 loads while the ``others`` ranks compute their first chunks: the kernel
+    (when it was compiled before the run) and, with other ranks, xarray for the merge (alone,
+    rank 0 imports it when it merges, after its chunks)."""
     from .cells import warm_up
 
     warm_up()
-    import xarray  # noqa: F401
+    if others:
+        import xarray  # noqa: F401
 
 
 def _watch(comm, options):
@@ -233,7 +235,7 @@ class _Rounds:
     def __init__(self, comm, study, options, name, parts=None, first=None):
         self.comm, self.study, self.options, self.name = comm, study, options, name
         self.parts, self.first = parts, first
-        self.before = _load_rest  # once, before rank 0's first chunk
+        self.before = lambda: _load_rest(comm.Get_size() - 1)  # before rank 0's first chunk
         self.stats = {}
         self.run_chunk = _chunk_runner(study, options)
 

@@ -1,6 +1,7 @@
-"""What one scene did, in words: the line ``python -m sweep.scene`` prints first and the title
-of its plot, e.g. "overturned at t = 3.41 s: fell towards +x (right) after 12 impacts" or
-"stood: max |θ|/α 0.38, no slip, 79 impacts, modes: rotation 9.97 s".
+"""What one scene did, in words: the first line of ``python -m sweep.scene``, its plot's title.
+
+For example "overturned at t = 3.41 s: fell towards +x (right) after 12 impacts" or "stood: max
+|θ|/α 0.38, no slip, 79 impacts, modes: rotation 9.97 s".
 
 θ > 0 is rotation about the left corner, so a body that overturns with θ > 0 falls towards −x
 (to the left); α = atan(B/H) is the slenderness angle, so a body overturns when |θ|/α passes

@@ -1,12 +1,14 @@
-"""Fixtures of the study-runner tests; makes ``study_helpers`` (next to this file) importable."""
+"""Fixtures of the package's tests; makes ``study_helpers`` (next to this file) and the test
+modules of its subfolders (one per subpackage, some importing from another) importable."""
 import sys
 from pathlib import Path
 
 import pytest
 
-_HERE = str(Path(__file__).resolve().parent)
-if _HERE not in sys.path:
-    sys.path.insert(0, _HERE)
+_HERE = Path(__file__).resolve().parent
+for _folder in (_HERE, *sorted({p.parent for p in _HERE.glob("*/test_*.py")})):
+    if str(_folder) not in sys.path:
+        sys.path.insert(0, str(_folder))
 
 from study_helpers import make_study  # noqa: E402
 

@@ -1,6 +1,8 @@
-"""Text files of numbers in columns: time and acceleration (two columns), or accelerations alone
-(one column, or any number of values per line read row by row) with the sample step given by
-the user.  ``#`` starts a comment; blank lines are skipped.
+"""Text files of numbers in columns: time and acceleration, or accelerations alone.
+
+Two columns (time and acceleration), or accelerations alone (one column, or any number of
+values per line read row by row) with the sample step given by the user.  ``#`` starts a
+comment; blank lines are skipped.
 
 A comment may state the acceleration unit: ``# acceleration [g]``, ``# units: gal``, ``# m/s^2``
 (:func:`stated_units`).  The numbers are read in that unit unless the user gives another, which

@@ -1,5 +1,6 @@
-"""The communicator of this process: ``COMM_WORLD`` with its messages counted, or a serial
-stand-in; and the tags of the ranks' messages.
+"""The communicator of this process: ``COMM_WORLD`` with its messages counted, or a stand-in.
+
+The stand-in is serial; the tags of the ranks' messages are here too.
 
 mpi4py is loaded here, and only when a launcher started the process (or
 ``SWEEP_MPI=1``): a plain ``python -m sweep.run`` never loads MPI, and a broken MPI install

@@ -1,8 +1,9 @@
-"""Dealing a round's chunks one at a time to whichever rank asks (dynamic self-scheduling, as
-OpenMP's ``schedule(dynamic)``): rank 0's :class:`Dealer` answers the other ranks'
-:class:`Taker` from a thread of its own while rank 0 computes its chunks too, so a rank that
-drew slow cells takes fewer chunks and every rank ends within about one chunk of the
-others."""
+"""Chunks dealt one at a time to whichever rank asks: :class:`Dealer` and :class:`Taker`.
+
+Dynamic self-scheduling, as OpenMP's ``schedule(dynamic)``: rank 0's :class:`Dealer` answers
+the other ranks' :class:`Taker` from a thread of its own while rank 0 computes its chunks too,
+so a rank that drew slow cells takes fewer chunks and every rank ends within about one chunk of
+the others."""
 import threading
 import time
 

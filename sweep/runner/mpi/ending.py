@@ -1,5 +1,7 @@
-"""How a job ends early: an exception on any rank aborts the whole job with its traceback;
-after Ctrl-C the ranks settle what they left unmatched and end MPI before they end."""
+"""How a job ends early: an exception aborts every rank; after Ctrl-C the ranks settle, then end.
+
+An exception on any rank aborts the whole job with its traceback; after Ctrl-C the ranks settle
+what they left unmatched and end MPI before they end."""
 import ctypes
 import os
 import signal

@@ -1,6 +1,7 @@
-"""Launcher detection: whether an MPI launcher started this process, how many ranks it
-announced, and whether this is its first process; read from the launchers' variables alone
-(nothing of MPI is loaded)."""
+"""Which launcher started this process, and the ranks it announced, with no MPI loaded.
+
+Whether an MPI launcher started this process, how many ranks it announced, and whether this is
+its first process; read from the launchers' variables alone."""
 import os
 
 # Variables by which launchers announce the number of ranks (Hydra/MPICH, Intel MPI, Open MPI,

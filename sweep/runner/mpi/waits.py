@@ -1,6 +1,7 @@
-"""Waiting without spinning: every wait of a rank is a test-and-sleep loop, which first
-raises a Ctrl-C that was swallowed; and the ranks' meetings built on it (barrier, gather,
-the plans rank 0 hands out)."""
+"""Waiting without spinning: test-and-sleep waits, and the ranks' meetings built on them.
+
+Every wait of a rank is a test-and-sleep loop, which first raises a Ctrl-C that was swallowed;
+the meetings are the barrier, the gather and the plans rank 0 hands out."""
 import time
 
 from .. import interrupt

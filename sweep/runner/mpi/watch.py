@@ -1,6 +1,7 @@
-"""Rank 0's watch over the other ranks: a rank silent for longer than ``max(floor,
-WATCH_FACTOR x the slowest chunk so far)`` is stopped or stuck, and the job aborts naming it
-and the cells it held."""
+"""Rank 0's watch over the other ranks: a rank silent for too long ends the job.
+
+A rank silent for longer than ``max(floor, WATCH_FACTOR x the slowest chunk so far)`` is
+stopped or stuck, and the job aborts naming it and the cells it held."""
 import threading
 import time
 

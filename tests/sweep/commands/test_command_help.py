@@ -13,7 +13,7 @@ import pytest
 
 from sweep import cli
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 COMMANDS = [f"sweep.{package}{path.stem}"  # the modules with a main run by python -m
             for package in ("", "paper.")
             for path in sorted((ROOT / "sweep" / package.rstrip(".")).glob("*.py"))

@@ -15,7 +15,7 @@ from sweep.paper.landing import (OVERTURNS_BACK, OVERTURNS_FORWARD, SLIDES, TILT
 from sweep.plots.landing import PAPER_PANELS, figure_landing
 
 matplotlib.use("Agg")
-STUDIES = Path(__file__).resolve().parents[2] / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / "studies"
 E_X = [-1.0, -0.99, -0.9, 0.0]
 E_Y = [0.2, 0.5, 0.8]
 # class at (e_x, e_y) of studies/fig05_landing_map.yaml (docs/landing.md 5)

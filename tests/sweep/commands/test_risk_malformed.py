@@ -25,7 +25,7 @@ from sweep.io.risk_schema import load_risk
 from sweep.probability.risk_inputs import checked_hazard
 from sweep.risk import main
 
-STUDIES = Path(__file__).resolve().parents[2] / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / "studies"
 HEADER = "pga_g,annual_rate\n"
 OQ = "#,,,\"generated_by='x', kind='mean', investigation_time=50.0, imt='PGA'\"\n"
 OQ_HEADER = "lon,lat,depth,poe-0.1,poe-0.2\n"

@@ -11,7 +11,7 @@ import pytest
 from kernels import _jit
 from sweep.runner import cells, fingerprint
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 SCENE = str(ROOT / "studies" / "steady_rocking.yaml")
 
 pytestmark = pytest.mark.skipif(_jit.DISABLED, reason="numba's compiler is off")

@@ -21,7 +21,7 @@ from sweep.runner import store
 
 pytestmark = pytest.mark.mpi
 
-SCRIPT = Path(__file__).resolve().parents[1] / "mpi_two_ranks.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "mpi_two_ranks.py"
 MPIEXEC = shutil.which("mpiexec", path=str(Path(sys.executable).parent)) or \
     shutil.which("mpiexec")
 if MPIEXEC is None:

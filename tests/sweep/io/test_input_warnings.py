@@ -20,7 +20,7 @@ from sweep.runner import refine
 from study_helpers import PY, cli_env
 
 G = 9.80665
-RECORDS = Path(__file__).resolve().parents[2] / "sweep" / "data" / "records"
+RECORDS = Path(__file__).resolve().parents[3] / "sweep" / "data" / "records"
 BLOCK = {"B": 0.2, "H": 0.6}
 
 

@@ -18,7 +18,7 @@ import pytest
 nbformat = pytest.importorskip("nbformat")
 nbclient = pytest.importorskip("nbclient")
 
-NOTEBOOK = Path(__file__).resolve().parents[2] / "studies" / "explore.ipynb"
+NOTEBOOK = Path(__file__).resolve().parents[3] / "studies" / "explore.ipynb"
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FIGURES = 6         # history, scene, line at 2 Hz, xarray map, package map, fragility
 STUDY_CELLS = 17 * 12 * 2  # amplitude x frequency x b_over_h of section 3

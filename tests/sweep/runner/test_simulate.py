@@ -9,7 +9,7 @@ from study_helpers import cli
 import sweep
 from sweep.runner.simulate import simulate, summary, to_json_dict
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 
 # docs/physics.md A4: B x H = 10 x 30 cm released from theta0 = 0.5 alpha, Housner impacts
 A4_FIRST_IMPACTS = (0.19368, 0.47162, 0.68867)

@@ -22,7 +22,7 @@ from sweep.netcdf import write_netcdf
 
 matplotlib.use("Agg")
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 STEADY = ROOT / "studies" / "steady_rocking.yaml"  # 79 impacts in 10 s
 VERDICT_KEYS = ("status", "overturned", "t_overturn", "overturn_direction", "overturn_towards",
                 "message")

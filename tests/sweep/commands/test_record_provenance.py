@@ -18,7 +18,7 @@ from sweep.plots.scene import draw_scene
 from sweep.runner.simulate import simulate
 
 G = 9.80665
-BUNDLED = Path(__file__).resolve().parents[2] / "sweep" / "data" / "records"
+BUNDLED = Path(__file__).resolve().parents[3] / "sweep" / "data" / "records"
 
 
 def _elcentro_at2(path):

@@ -15,7 +15,7 @@ from sweep.io.scene_schema import load_scene
 from sweep.probability.risk_inputs import checked_hazard
 from sweep.runner.cell_checks import load_study
 
-STUDIES = Path(__file__).resolve().parents[2] / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / "studies"
 FILES = sorted(STUDIES.glob("*.yaml"))
 
 

@@ -13,7 +13,7 @@ import yaml
 from kernels.api import DEFAULTS
 from sweep.io import bodies_schema, reference, risk_schema, scene_schema, study_schema
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 DOCS = ROOT / "docs"
 REGENERATE = "python -m sweep.io.reference --json-schema"
 

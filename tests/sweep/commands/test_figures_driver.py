@@ -5,7 +5,7 @@ import numpy as np
 
 from sweep import figures, plot
 
-STUDIES = Path(__file__).resolve().parents[2] / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / "studies"
 
 
 def test_it_runs_every_sweep_and_record_study_once():

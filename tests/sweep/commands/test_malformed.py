@@ -26,7 +26,7 @@ from study_helpers import PY, cli_env
 
 TIMEOUT = 30.0  # seconds a case may take (the slowest valid one takes about two)
 WORKERS = 4
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 CASES = corpus.cases()
 BY_NAME = {case.name: case for case in CASES}
 # a problem line: "  <dotted path | (file) | line L, column C>: message"
