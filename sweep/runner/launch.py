@@ -448,7 +448,8 @@ def _run(comm, path, options, state):
             import kernels.driver  # noqa: F401
     plan = state.plan = mpi.distribute(comm, plans)
     while isinstance(plan, rank_checks.Check):  # ranks other than 0: check cells first
-        state.study = rank_checks.check_share(comm, plan)
+        state.study = rank_checks.check_share(comm, plan, lambda source, text, output: _study(
+            source, options, text=text, output=output))
         plan = state.plan = mpi.distribute(comm)
     if isinstance(plan, Stop):
         if plan.refused:

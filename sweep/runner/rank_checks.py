@@ -10,7 +10,6 @@ file has problems of its own) sends None and rank 0 checks its share.
 """
 from collections import namedtuple
 
-from ..io import study_schema
 from ..io.problems import FileProblems
 from . import cell_checks, mpi
 
@@ -38,12 +37,12 @@ def shared(comm):
     return cells
 
 
-def check_share(comm, check):
-    """A rank other than 0: load the study of ``check``, send rank 0 the findings of its share
-    of the cells, and return the study (None when it cannot be loaded)."""
+def check_share(comm, check, load):
+    """A rank other than 0: load the study of ``check`` with ``load(source, text, output)``
+    (the run's loader, as rank 0 loads it), send rank 0 the findings of its share of the
+    cells, and return the study (None when it cannot be loaded)."""
     try:
-        study = study_schema.load_study(check.source, text=check.text, output=check.output,
-                                        max_cells=None)
+        study = load(check.source, check.text, check.output)
     except FileProblems:  # the file's own problems: rank 0 reports them and checks this share
         mpi.gather(comm, None)
         return None
