@@ -115,6 +115,10 @@ VARIABLES = {
     "alpha_2": Variable("float64", "rad", "angle at G from the vertical to the right corner",
                         comment="atan(b2/y_G), b2 = B/2 - x_G; the body tips to the right "
                                 "(overturn_direction -1) about this corner (docs/bodies.md)"),
+    "isolator_max_displacement": Variable(
+        "float64", "m", "largest displacement of the friction pendulum under the platform",
+        comment="relative to the motion under it (docs/isolation.md); NaN without a friction "
+                "pendulum"),
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 

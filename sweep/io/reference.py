@@ -50,6 +50,10 @@ SCENE = (Section("", scene.Scene, {}),
          Section(f"{_GROUND} (kind: record, synthetic).sa", scene.SpectralTarget, {}),
          Section(f"{_GROUND} (kind: floor).building", scene.Building, {}),
          Section(f"{_GROUND} (kind: floor).building.modes[i]", scene.BuildingMode, {}),
+         Section(f"{_GROUND} (kind: isolated).isolator (kind: linear)", scene.LinearIsolator,
+                 {}),
+         Section(f"{_GROUND} (kind: isolated).isolator (kind: friction_pendulum)",
+                 scene.FrictionPendulum, {}),
          Section("initial", scene.Initial, DEFAULTS["initial"]),
          Section("solver", scene.Solver, DEFAULTS["solver"]))
 STUDY = (Section("", study.StudyFile, {"output": f"{study.OUTPUT_DIR}/<name>.nc"}),
@@ -365,15 +369,24 @@ def study_json_schema():
 
 def risk_json_schema():
     """The JSON Schema of risk files: its scene refers to the scene files' schema, its grid
-    names the body axes of a risk map."""
+    takes a study's axes (those of ``io.vocabulary.AXES`` that set no motion, or a dotted
+    scene path)."""
     schema = _described_units(_bounded(risk.RiskFile.model_json_schema()))
+    schema.setdefault("$defs", {})["RangeSpec"] = _described_units(_bounded(
+        study.RangeSpec.model_json_schema()))
     properties = schema["properties"]
     properties["scene"] = {"anyOf": [{"$ref": JSON_SCHEMAS["scene"]}, {"type": "null"}],
                            "description": properties["scene"]["description"]}
-    values = {"type": "array", "minItems": 1, "items": {"type": ["number", "string"]}}
-    properties["grid"] = {"anyOf": [{"type": "object", "additionalProperties": False,
-                                     "minProperties": 1,
-                                     "properties": {axis: values for axis in risk.GRID_AXES}},
+    axis = {"anyOf": [{"type": "array", "minItems": 1, "items": study.AXIS_VALUE},
+                      {"$ref": "#/$defs/RangeSpec"}]}
+    named = {name: {**axis, "description": long_name}
+             for name, (paths, _, long_name) in vocabulary.AXES.items()
+             if not any(p.startswith("excitation") for p in paths)}
+    dotted = f"^({'|'.join(vocabulary.SCENE_SECTIONS)})\\."
+    properties["grid"] = {"anyOf": [{"type": "object", "additionalProperties": axis,
+                                     "minProperties": 1, "properties": named,
+                                     "propertyNames": {"anyOf": [{"enum": list(named)},
+                                                                 {"pattern": dotted}]}},
                                     {"type": "null"}],
                           "description": properties["grid"]["description"]}
     return _finished(_nullable_sections(schema), "Risk file (python -m sweep.risk)")

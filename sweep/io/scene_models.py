@@ -22,7 +22,7 @@ from .fields import (Acceleration, Angle, Coefficient, Count, Duration, Frequenc
 from .problems import MISSING, FieldError
 from .units import Quantity
 
-KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic", "floor")
+KINDS = ("none", "sine", "sweep", "record", "pulse", "synthetic", "floor", "isolated")
 SCALE_KEYS = ("scale", "pga", "pgv", "sa")  # how a record or synthetic motion is scaled
 HOLD_DIMENSIONS = {"acceleration": "acceleration", "velocity": "velocity",
                    "displacement": "length"}
@@ -465,8 +465,68 @@ class FloorMotion(StrictModel):
         return self
 
 
+Under = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
+                        SyntheticMotion, FloorMotion], Field(discriminator="kind")]
+
+
+class LinearIsolator(StrictModel):
+    """A linear isolator: one oscillator of participation 1 (docs/isolation.md)."""
+
+    kind: Literal["linear"] = Field(description="the kind of isolator")
+    period: quantity("time", gt=0) = Field(description="isolated period")
+    damping: Damping = Field("5 %", validate_default=True,
+                             description="damping ratio (5 % or 0.05)")
+
+
+class FrictionPendulum(StrictModel):
+    """A friction pendulum: a Coulomb slider on a sphere (docs/isolation.md)."""
+
+    kind: Literal["friction_pendulum"] = Field(description="the kind of isolator")
+    radius: quantity("length", gt=0) = Field(description="radius of the sliding sphere")
+    mu: Annotated[Real, Field(ge=0)] = Field(description="friction coefficient of the slider")
+    displacement_capacity: Optional[quantity("length", gt=0)] = Field(
+        None, description="largest displacement before the stop: a larger one is flagged "
+                          "exceeded and cautioned, the slide goes on")
+
+
+class IsolatedMotion(StrictModel):
+    """The absolute acceleration of a platform on an ``isolator`` over any motion ``under``
+    it but an isolated one (docs/isolation.md); ``under``'s ``start`` and ``duration`` are the
+    platform's."""
+
+    kind: Literal["isolated"] = Field(description="the kind of motion")
+    under: Under = Field(description="the motion under the isolator")
+    isolator: Annotated[Union[LinearIsolator, FrictionPendulum],
+                        Field(discriminator="kind")] = Field(description="the isolator")
+
+    @field_validator("under", mode="before")
+    @classmethod
+    def _not_isolated(cls, value):
+        if isinstance(value, dict) and value.get("kind") == "isolated":
+            raise FieldError("kind", "isolated", "an isolator stands on a ground or a floor, "
+                                                 "not on another isolator")
+        return {"kind": "none"} if value is None or value == "none" else value
+
+    @field_validator("isolator", mode="before")
+    @classmethod
+    def _known_isolator(cls, value):
+        kinds = ("linear", "friction_pendulum")
+        if isinstance(value, dict) and "kind" in value and value["kind"] not in kinds:
+            raise FieldError("kind", value["kind"],
+                             f"unknown kind; expected one of: {', '.join(kinds)}")
+        return value
+
+    @model_validator(mode="after")
+    def _own_scale(self):
+        if getattr(self.under, "scale_with", None) is not None:
+            raise FieldError(("under", "scale_with"), self.under.scale_with,
+                             "an isolator's ground has a scale of its own")
+        return self
+
+
 Ground = Annotated[Union[NoMotion, SineMotion, SweepMotion, RecordMotion, PulseMotion,
-                         SyntheticMotion, FloorMotion], Field(discriminator="kind")]
+                         SyntheticMotion, FloorMotion, IsolatedMotion],
+                   Field(discriminator="kind")]
 
 
 class Excitation(StrictModel):
@@ -482,6 +542,14 @@ class Excitation(StrictModel):
     def _none_shorthand(cls, value):
         """``vertical: none`` or an empty entry means no motion."""
         return {"kind": "none"} if value is None or value == "none" else value
+
+    @model_validator(mode="after")
+    def _isolated_horizontal(self):
+        """An isolator (``kind: isolated``) moves the body horizontally only."""
+        if self.vertical.kind == "isolated":
+            raise FieldError(("vertical", "kind"), "isolated", "an isolator is horizontal: "
+                                                               "give it as the horizontal")
+        return self
 
     @model_validator(mode="after")
     def _scale_with_a_scaled_horizontal(self):

@@ -16,9 +16,10 @@ from kernels.api import DEFAULTS, PackingError, scene_row
 from ..groundmotion.oscillator import pseudo_acceleration
 from . import floors, records, units
 from .loader import load_file
-from .problems import MISSING, FileProblems, Problem, dotted_path
+from .problems import MISSING, FileProblems, Problem, dotted_path, warn
 from .scene_models import (KINDS, _FILE_OPTIONS, Body, Building, BuildingMode, Contact,
-                           Excitation, FloorMotion, Initial, NoMotion, PulseMotion,
+                           Excitation, FloorMotion, FrictionPendulum, Initial,
+                           IsolatedMotion, LinearIsolator, NoMotion, PulseMotion,
                            RecordMotion, Scene, SineMotion, Solver, SpectralTarget,
                            SweepMotion, SyntheticMotion, _read_file)
 from .units import Quantity
@@ -32,14 +33,17 @@ SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks w
 
 _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
            SpectralTarget, PulseMotion, SyntheticMotion, FloorMotion, Building, BuildingMode,
-           Initial, Solver)
+           IsolatedMotion, LinearIsolator, FrictionPendulum, Initial, Solver)
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
 def _union_tag(loc, i):
-    """The tag pydantic inserts after a ground component (``excitation.horizontal.sine``) or
-    a building's ``modes``."""
-    if i >= 2 and loc[i - 1] in ("horizontal", "vertical", "ground") and loc[i] in KINDS:
+    """The tag pydantic inserts after a ground component (``excitation.horizontal.sine``), an
+    isolator or a building's ``modes``."""
+    if i >= 2 and loc[i - 1] in ("horizontal", "vertical", "ground", "under") and \
+            loc[i] in KINDS:
+        return True
+    if loc[i - 1:i] == ("isolator",) and loc[i] in ("linear", "friction_pendulum"):
         return True
     return loc[i - 1:i] == ("modes",) and loc[i] in ("count", "list")
 
@@ -138,6 +142,12 @@ def _ground(g, body, excitation, t_end=None):
             return floors.resolve_floor(g.building, _ground(g.ground, body, excitation), t_end)
         except FileProblems as err:
             raise err.with_prefix("ground") from None
+    if g.kind == "isolated":
+        try:
+            under = _ground(g.under, body, excitation, t_end)
+        except FileProblems as err:
+            raise err.with_prefix("under") from None
+        return floors.resolve_isolated(g.isolator, under, t_end)
     defaults = DEFAULTS["ground"]
     out = {"kind": g.kind, "start": _si(g.start, defaults["start"]),
            "duration": _si(g.duration, defaults["duration"])}
@@ -156,6 +166,15 @@ def _ground(g, body, excitation, t_end=None):
         out.update(kind="record", samples=rec.samples, dt=rec.dt,
                    scale=_scale(g, rec, body, excitation), source=rec)
     return out
+
+
+def _capacity_caution(isolator, path):
+    """Caution that an isolator's largest displacement is past its ``displacement_capacity``
+    (the slide is computed without the stop: docs/isolation.md)."""
+    if isolator is not None and isolator["exceeded"]:
+        warn([Problem(f"{path}.displacement_capacity", f"{isolator['capacity']:g} m",
+                      f"the isolator slides {isolator['max_displacement']:.3g} m, past its "
+                      "capacity: the platform's motion is computed as if it had no stop")])
 
 
 def _end(ground):
@@ -245,6 +264,7 @@ def resolve_and_pack(scene, records):
                                       _si(scene.solver.t_end, DEFAULTS["solver"]["t_end"]))
         except FileProblems as err:
             raise err.with_prefix(f"excitation.{key}") from None
+        _capacity_caution(excitation[key].get("isolator"), f"excitation.{key}.isolator")
 
     initial = {key: _si(getattr(scene.initial, key), default, body)
                for key, default in DEFAULTS["initial"].items()}

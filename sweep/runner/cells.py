@@ -54,22 +54,23 @@ def build_rows(study, cells, records=None, scenes=None):
     bodies : ndarray, shape (n, 5)
         B, H [m], i_g [m] (NaN for a uniform body) and G = (x_G, y_G) [m] (NaN for G in the
         middle) of each cell.
-    motions : ndarray, shape (n, 4)
+    motions : ndarray, shape (n, 5)
         PGA, PGV, PGD and significant duration of each cell's horizontal motion
-        (``groundmotion.applied.peaks``).
+        (``groundmotion.applied.peaks``), and the largest displacement of its isolator
+        (NaN without one, or a linear one: ``io.floors.resolve_isolated``).
     problems : dict of int to str
         Position in ``cells`` to the problem of each cell whose scene cannot be built
         (loaded, resolved or packed); its row (every field) and body are NaN.
     """
     rows = api.scene_rows(len(cells))
     bodies = np.empty((len(cells), 5))
-    motions = np.full((len(cells), len(applied.Peaks._fields)), np.nan)
+    motions = np.full((len(cells), len(applied.Peaks._fields) + 1), np.nan)
     records = RecordCache() if records is None else records
     scenes = CellRows(study) if scenes is None else scenes
     together, built_bodies, built_motions, built = scenes.build(cells)
     if built.any():
-        rows[built], bodies[built], motions[built] = (together[built], built_bodies[built],
-                                                      built_motions[built])
+        rows[built], bodies[built], motions[built, :-1] = (together[built], built_bodies[built],
+                                                           built_motions[built])
     problems = {}
     for k in np.flatnonzero(~built):
         try:
@@ -80,7 +81,11 @@ def build_rows(study, cells, records=None, scenes=None):
         body = resolved["body"]
         bodies[k] = (body["B"], body["H"], np.nan if body["i_g"] is None else body["i_g"],
                      *((np.nan, np.nan) if body["G"] is None else body["G"]))
-        motions[k] = applied.peaks(resolved["excitation"]["horizontal"])
+        horizontal = resolved["excitation"]["horizontal"]
+        isolator = horizontal.get("isolator") or {}
+        motions[k] = (*applied.peaks(horizontal),
+                      np.nan if isolator.get("max_displacement") is None
+                      else isolator["max_displacement"])
     return rows, records.buffer(), bodies, motions, problems
 
 
@@ -115,7 +120,7 @@ def summarize(results, bodies, motions):
                        np.where(overturned, codes.OVERTURN,
                                 np.where(theta > 0, codes.ROCKED, codes.NO_ROCKING)))
     west, v_H, p, alpha_1, alpha_2 = _body_scales(bodies)
-    pga, pgv, pgd, d5_95 = motions.T
+    pga, pgv, pgd, d5_95, isolator = motions.T
     out = {
         "outcome": outcome,
         "overturned": np.where(failed, -1, overturned),
@@ -137,7 +142,7 @@ def summarize(results, bodies, motions):
         "slid": np.where(failed, -1, results["max_slip"] > cf.SLID_THRESHOLD),
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
-        "alpha_1": alpha_1, "alpha_2": alpha_2,
+        "alpha_1": alpha_1, "alpha_2": alpha_2, "isolator_max_displacement": isolator,
     }
     return {name: np.ascontiguousarray(a, dtype=cf.VARIABLES[name].dtype)
             for name, a in out.items()}

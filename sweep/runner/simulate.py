@@ -30,7 +30,8 @@ IMPACT_KEYS = ("impact_times", "omega_after", "impact_slipped")
 PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file was read
 
 Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS
-                    + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY, "on_floor"))
+                    + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY, "on_floor",
+                       "isolator"))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
 ``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), the body:
 breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad] (the
@@ -38,7 +39,10 @@ smaller side's with G off the middle), the ``body`` in both forms (``bodies.desc
 ``overturn_towards``: the way the body fell, ``"-x"`` (to the left, ``overturn_direction``
 +1) or ``"+x"``, None when it stands (``verdict.fall_side``), the ``provenance`` of each
 floor component that is a record (``records.floor_provenance``), and ``on_floor``: True when
-the horizontal motion is a building's floor (``kind: floor``; its peaks are the floor's)."""
+the horizontal motion is a building's floor (``kind: floor``; its peaks are the floor's),
+``isolator``: on an isolated platform (``kind: isolated``; its peaks are the platform's), the
+isolator's ``max_displacement`` [m] (None for a linear one), ``capacity`` [m] and ``exceeded``
+(``sweep.io.floors.resolve_isolated``), else None."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
@@ -71,7 +75,8 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     alpha = math.atan2(B, H) if body["G"] is None else float(slenderness(B, H, body["G"]))
     result = Result(*ran, *motion[:3], B, H, alpha, describe(B, H, body["G"], body["i_g"]),
                     fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]),
-                    checked.excitation.horizontal.kind == "floor")
+                    checked.excitation.horizontal.kind == "floor",
+                    resolved["excitation"]["horizontal"].get("isolator"))
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
@@ -95,8 +100,8 @@ def _check_history(resolved, source):
 def summary(result):
     """Two lines: what the body did (``verdict.verdict``), then the end status with its
     message, the peaks of the horizontal motion (``floor PGA`` on a building's floor, ``PGA``
-    on the ground) and the CPU time."""
-    where = "floor " if result.on_floor else ""
+    on the ground, ``platform PGA`` on an isolator) and the CPU time."""
+    where = "platform " if result.isolator else "floor " if result.on_floor else ""
     floor = (f"{where}PGA {result.pga / G:.3g} g, PGV {result.pgv * 100:.3g} cm/s"
              if result.pga > 0 else "horizontal floor still")
     return (f"{verdict(result._asdict())}\n{result.status}: {result.message}; {floor}; "
@@ -109,5 +114,7 @@ def to_json_dict(result):
     the impact count (``impact_times`` holds the first ``impact_count`` impacts only when
     ``impact_log_truncated``), the impacts whose restitution was clamped, the peaks of the
     horizontal motion applied, how each record was read (``provenance``: reader, unit and
-    where it came from, dt, samples, header), and whether each impact slipped."""
-    return {key: getattr(result, key) for key in SUMMARY_KEYS + (PROVENANCE_KEY,) + IMPACT_KEYS}
+    where it came from, dt, samples, header), whether each impact slipped, and on an isolated
+    platform the ``isolator``."""
+    out = {key: getattr(result, key) for key in SUMMARY_KEYS + (PROVENANCE_KEY,) + IMPACT_KEYS}
+    return out if result.isolator is None else {**out, "isolator": result.isolator}
