@@ -11,12 +11,14 @@ fragility::
 Writes the results as a CF netCDF dataset (``--dataset``, default ``results/<name>/risk.nc``
 beside the risk file), the fitted fragility as an OpenQuake NRML fragility model
 (``--nrml``, default ``fragility.xml`` beside the dataset; a known fragility where ``--nrml``
-says), ``-o`` a figure (the risk map with ``--map`` for a grid of bodies), ``--csv`` a table
-per body; ``--json`` prints the report.  With ``--hazard`` the dataset is written only where
-``--dataset`` says.  ``results/<name>`` is one risk file's (``risk_file.txt`` names it):
-another of the same name is refused unless ``--force``.  A bad input gets one line per
-problem and exit status 2.  Under ``mpiexec -n N`` the ranks share the stripes'
-simulations (each stripe study runs on all of them) and rank 0 reports and writes.
+says), ``-o`` a figure (the risk map with ``--map`` for a grid of bodies, its options side by
+side against the target with ``--options``), ``--csv`` a table per body; ``--json`` prints the
+report, and the text lists a grid's options side by side.  With ``--hazard`` the dataset is
+written only where ``--dataset`` says.  ``results/<name>`` is one risk file's
+(``risk_file.txt`` names it): another of the same name is refused unless ``--force``.  A bad
+input gets one line per problem and exit status 2.  Under ``mpiexec -n N`` the ranks share
+the stripes' simulations (each stripe study runs on all of them) and rank 0 reports and
+writes.
 """
 import sys
 from pathlib import Path
@@ -70,6 +72,9 @@ def _parser():
     parser.add_argument("--json", action="store_true", help="print the report as JSON (SI)")
     parser.add_argument("-o", "--output", help="figure file (.png, .pdf, .svg)")
     parser.add_argument("--map", help="risk map figure over the grid of bodies")
+    parser.add_argument("--options", metavar="FIG",
+                        help="options figure of a grid: P with its interval per body, "
+                             "against the target")
     parser.add_argument("--csv", help="table: one row per body")
     parser.add_argument("--dataset", help="netCDF dataset of the results")
     parser.add_argument("--nrml", help="OpenQuake fragility model (NRML 0.5) of the fit, or "
@@ -322,6 +327,8 @@ def print_report(outcome):
                 top = "..." if not np.isfinite(upper) else f"{upper / factor:.3g}"
                 print(f"  {lower / factor:8.3g} - {top:<8} {100 * share:6.1f} %  "
                       + "#" * int(round(40 * share)))
+    if outcome.body_dims:
+        print("\n".join(_options_lines(outcome)))
     if outcome.target is not None and outcome.shape:
         meeting = [outcome.names()[i] for i in np.ndindex(*outcome.shape)
                    if outcome.risks[i] is not None
@@ -336,6 +343,49 @@ def print_report(outcome):
             print(f"  {label}{' *' if label in sure else ''}")
     for text in outcome.warnings:
         print(f"caution: {text}")
+
+
+def _verdicts(r, target):
+    """Whether ``r`` meets ``target``: by its estimate and by its interval's upper bound (a
+    body never overturned: by its bound, both); ``n/a`` where not known."""
+    if r is None:
+        return "n/a", "n/a"
+    upper = r.probability if r.bound is not None else r.probability_interval[1]
+    said = {True: "yes", False: "no"}
+    return said[bool(r.probability <= target)], \
+        said[bool(upper <= target)] if upper == upper else "n/a"
+
+
+def _options_lines(outcome):
+    """The options of a grid side by side, a row per body: its axes' values (SI), P in
+    years with its interval (≤ its bound for a body never overturned) and, with a target,
+    whether it meets it by the estimate and by the upper bound."""
+    import numpy as np
+
+    heads = [a + (f" [{u}]" if u != "1" else "") for a, u in zip(outcome.axes(),
+                                                                 outcome.units())]
+    heads += [f"P in {outcome.years:g} yr", f"{100 * outcome.confidence:g} % interval"]
+    if outcome.target is not None:
+        heads += ["meets (estimate)", "meets (upper bound)"]
+    rows = []
+    for index in np.ndindex(*outcome.shape):
+        r = outcome.risks[index]
+        row = [f"{v:.4g}" for v in outcome.option(index).values()]
+        if r is None:
+            row += ["n/a", ""]
+        elif r.bound is not None:
+            row += [f"≤ {_pct(r.probability)}", "(never overturned: bound)"]
+        else:
+            lo, hi = r.probability_interval
+            row += [_pct(r.probability), f"[{_pct(lo)}, {_pct(hi)}]" if lo == lo else ""]
+        if outcome.target is not None:
+            row += list(_verdicts(r, outcome.target))
+        rows.append(row)
+    widths = [max(len(c) for c in column) for column in zip(heads, *rows)]
+    target = "" if outcome.target is None else f"; target {_pct(outcome.target)}"
+    return [f"options ({outcome.risks.size}{target}):"] + [
+        "  " + "  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip()
+        for row in (heads, *rows)]
 
 
 def _side_line(outcome, index, factor, unit):
@@ -393,7 +443,7 @@ def _csv_rows(outcome):
     for index in np.ndindex(*outcome.shape):
         record = body_record(outcome, index)
         interval = record.get("interval") or {}
-        rows.append({"body": record["body"], **{d: record[d] for d in outcome.body_dims},
+        rows.append({"body": record["body"], **outcome.option(index),
                      "median": record["fragility"]["median"],
                      "beta": record["fragility"]["beta"],
                      "annual_rate": record["annual_rate"],
@@ -426,7 +476,7 @@ def _write_nrml(outcome, path):
                                  description=f"overturning: {outcome.name}")
 
 
-def _draw(outcome, figure, risk_map):
+def _draw(outcome, figure, risk_map, options=None):
     import matplotlib
     import numpy as np
 
@@ -439,6 +489,8 @@ def _draw(outcome, figure, risk_map):
         risk_plots.save(risk_plots.figure_body(outcome, shown), Path(figure))
     if risk_map:
         risk_plots.save(risk_plots.figure_map(outcome), Path(risk_map))
+    if options:
+        risk_plots.save(risk_plots.figure_options(outcome), Path(options))
 
 
 @command
@@ -449,6 +501,7 @@ def main(argv=None):
         print("sweep.risk: give a risk file or --hazard CURVE (not both)", file=sys.stderr)
         return EXIT_BAD_INPUT
     unusable = output_problems({"-o/--output": args.output, "--map": args.map,
+                                "--options": args.options,
                                 "--csv": args.csv, "--dataset": args.dataset,
                                 "--nrml": args.nrml})
     if unusable:
@@ -473,9 +526,11 @@ def main(argv=None):
     if not first_process():  # under mpiexec: the ranks shared the stripes; rank 0 reports
         return EXIT_OK
     outcome.warnings = said
-    if args.map and not outcome.body_dims:
-        print("sweep.risk: --map needs a grid of bodies in the risk file", file=sys.stderr)
-        return EXIT_BAD_INPUT
+    for flag, given in (("--map", args.map), ("--options", args.options)):
+        if given and not outcome.body_dims:
+            print(f"sweep.risk: {flag} needs a grid of bodies in the risk file",
+                  file=sys.stderr)
+            return EXIT_BAD_INPUT
     history = "python -m sweep.risk " + " ".join(sys.argv[1:] if argv is None else argv)
     written = []
     if dataset is not None:
@@ -492,9 +547,9 @@ def main(argv=None):
     if args.csv:
         write_csv(args.csv, _csv_rows(outcome))
         written.append(args.csv)
-    if args.output or args.map:
-        _draw(outcome, args.output, args.map)
-        written += [p for p in (args.output, args.map) if p]
+    if args.output or args.map or args.options:
+        _draw(outcome, args.output, args.map, args.options)
+        written += [p for p in (args.output, args.map, args.options) if p]
     if args.json:
         document = report(outcome)
         document["written"] = written

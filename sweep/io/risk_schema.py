@@ -39,14 +39,18 @@ from pydantic import (AfterValidator, Field, PrivateAttr, StrictInt, StrictStr,
 from .fields import Real, Seed, StrictModel, quantity
 from .imt import im_dimension, normalize_im
 from .loader import load_file
-from .problems import MISSING, FieldError, FileProblems, dotted_path, fields_checked
+from .problems import (MISSING, FieldError, FileProblems, dotted_path, fields_checked,
+                       join_path)
 from .records import NAMES as RECORD_NAMES
 from .scene_schema import KINDS, load_scene
+from .study_axes import no_conflicts
+from .study_schema import grid_axis
+from .vocabulary import targets
 
 GMPE_NAMES = ("BSSA14", "ASK14", "CB14", "CY14")  # sweep.probability.gmpe.MODELS
 MECHANISMS = ("SS", "NS", "RS")
 FORMATS = ("openquake", "usgs", "columns")
-GRID_AXES = ("B", "H", "b_over_h", "mu")  # body axes of a risk map
+FLOOR_AXES = "excitation.horizontal.building."  # the motion a risk map's axis may set
 SOURCE_KINDS = ("point", "area")
 MAX_LEVELS = 200
 MAX_MOTIONS = 10_000
@@ -378,25 +382,16 @@ class RiskFile(StrictModel):
                                                                           "probability")
     target: Optional[Annotated[Real, Field(gt=0, lt=1)]] = Field(
         None, description="the largest acceptable probability of overturning in years")
-    grid: Optional[dict[StrictStr, Annotated[list[Any], Field(min_length=1)]]] = Field(
-        None, description="a risk map: lists of B, H, b_over_h, mu")
+    grid: Optional[dict[StrictStr, Any]] = Field(
+        None, description="a risk map: axes of a study's grid that set the body, its contact "
+                          "or its building (B, H, b_over_h, mu, body.B, contact.mu, "
+                          "excitation.horizontal.building.period), each a list or a range")
     confidence: Annotated[Real, Field(gt=0, lt=1)] = Field(
         0.95, description="of the intervals")
     replicates: Annotated[StrictInt, Field(ge=0, le=100_000)] = Field(
         1000, description="bootstrap replicates of the fit")
     output: Optional[StrictStr] = Field(None, description="the netCDF dataset written")
     _curve: Any = PrivateAttr(None)
-
-    @field_validator("grid")
-    @classmethod
-    def _axes(cls, grid):
-        if grid is None:
-            return None
-        errors = [(key, key, f"not an axis of a risk map; axes: {', '.join(GRID_AXES)}")
-                  for key in grid if key not in GRID_AXES]
-        if errors:
-            raise FieldError.several(errors)
-        return grid
 
     @model_validator(mode="wrap")
     @classmethod
@@ -438,6 +433,8 @@ def _section_problems(raw):
              for key in ("stripes", "fragility", "scene")}
     stripes = _section(raw, "stripes")
     errors = _scene_problems(raw.get("scene") if isinstance(raw, dict) else None)
+    errors += _grid_problems(raw.get("grid") if isinstance(raw, dict) else None,
+                             _section(raw, "scene"))
     if _kind(_section(_section(raw, "scene"), "excitation").get("horizontal")) == "floor" and \
             _mixed_records(stripes.get("records")):
         errors.append(("stripes.records", stripes["records"], "under a building's floor, give "
@@ -502,6 +499,35 @@ def _scene_problems(scene):
         load_scene(checked)
     except FileProblems as problems:
         errors += [tuple(p) for p in problems.with_prefix("scene").problems]
+    return errors
+
+
+def _grid_problems(grid, scene):
+    """``(path, value, message)`` of a risk map's raw ``grid``: each axis checked as a study's
+    (``grid.<axis>``, against the raw ``scene``), and refused where it sets a motion, which the
+    stripes give (a floor's building excepted)."""
+    if not isinstance(grid, dict):
+        return []  # the field's problem
+    floor = _kind(_section(scene, "excitation").get("horizontal")) == "floor"
+    errors = []
+    for name, spec in ((n, s) for n, s in grid.items() if isinstance(n, str)):
+        path = join_path("grid", name)
+        motion = [t for t in targets(name) if t.startswith("excitation")
+                  and not (floor and t.startswith(FLOOR_AXES))]
+        if motion:
+            errors.append((path, name, f"sets {motion[0]}: {STRIPES_GIVE}; a risk map varies "
+                           "the body, its contact, its solver or, on a floor, its building "
+                           f"({FLOOR_AXES}*)"))
+            continue
+        try:
+            grid_axis(name, spec, scene, Path("."), [])
+        except FieldError as err:
+            errors += [(e.field, e.value, str(e)) for e in (err, *err.also)]
+    if not errors:
+        try:
+            no_conflicts(grid)
+        except FieldError as err:
+            errors += [(e.field, e.value, str(e)) for e in (err, *err.also)]
     return errors
 
 

@@ -263,7 +263,7 @@ class StudyFile(StrictModel):
         grid = data["grid"] if isinstance(data.get("grid"), dict) else {}
         axes, notes = {}, []  # notes: what record globs leave out, warned of
         for name, spec in grid.items():
-            found = _kept(errors, _axis, name, spec, scene, context["base_dir"], notes)
+            found = _kept(errors, grid_axis, name, spec, scene, context["base_dir"], notes)
             if found is not None:
                 axes[name] = found
         _kept(errors, no_conflicts, grid)
@@ -313,7 +313,7 @@ def _written(spec, path):
                                  "unit}")
 
 
-def _axis(name, spec, scene, base_dir, notes):
+def grid_axis(name, spec, scene, base_dir, notes):
     """The :class:`Axis` of ``grid.<name>``; a record glob's notes are put in ``notes``."""
     path = join_path("grid", name)
     if name == "record" and isinstance(spec, dict) and "glob" in spec:

@@ -3,7 +3,8 @@
 Per body (``sweep.probability.risk_report.RiskOutcome``) the hazard curve, the fragility with
 its band and the stripes' fractions, the risk integrand over the IM with the disaggregation of
 λ_O by segment, and the probability in ``years`` with its interval; over a grid of bodies the
-risk map with the contour of the target probability."""
+risk map with the contour of the target probability, and its options side by side against the
+target."""
 import numpy as np
 from matplotlib.colors import LogNorm
 
@@ -266,6 +267,48 @@ def figure_map(outcome):
     return fig
 
 
+def figure_options(outcome):
+    """The options of a grid side by side: a horizontal bar per body (labelled with its axes'
+    values) of P in ``years`` with its interval, the target line, the options meeting it
+    marked (by the estimate; ★ also by the upper bound); a body never overturned at its
+    bound, hatched."""
+    from matplotlib.figure import Figure
+
+    indices = list(np.ndindex(*outcome.shape))
+    labels = [outcome.labels()[i] for i in indices]
+    p = np.array([outcome.probabilities()[i] for i in indices])
+    lower, upper = (np.array([np.nan if outcome.risks[i] is None or outcome.risks[i].bound
+                              else outcome.risks[i].probability_interval[side]
+                              for i in indices]) for side in (0, 1))
+    bounded = [getattr(outcome.risks[i], "bound", None) is not None for i in indices]
+    target = outcome.target
+    y = np.arange(len(indices))
+    fig = Figure(figsize=(7, 1.2 + 0.45 * len(indices)), layout="constrained")
+    ax = fig.subplots()
+    meets = np.array([target is not None and v <= target for v in p])
+    ax.barh(y, np.nan_to_num(p), color=np.where(meets, "tab:green", "tab:gray"),
+            label="P, meeting the target (green) or not (grey)")
+    if any(bounded):
+        ax.barh(y[bounded], p[bounded], color="none", hatch="//", edgecolor="k",
+                label=f"never overturned: one-sided {100 * outcome.confidence:g} % bound")
+    ax.errorbar(p, y, xerr=[p - lower, upper - p], fmt="none", ecolor="k", capsize=3,
+                label=f"{100 * outcome.confidence:g} % interval")
+    if target is not None:
+        ax.axvline(target, color=CONTOUR_COLOR, ls="--", label=f"target {target:g}")
+        sure = meets & (np.where(np.isnan(upper), p, upper) <= target)
+        if sure.any():
+            ax.plot(p[sure], y[sure], "*", color="w", mec="k", ms=11, ls="none",
+                    label="meets it with the upper bound too")
+    ax.set_yticks(y, labels, fontsize=8)
+    ax.invert_yaxis()
+    ax.set(xlabel=f"P(overturn in {outcome.years:g} yr)", xlim=(0, None))
+    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    fixed = outcome.fixed()
+    fit_suptitle(fig, [f"options: {outcome.name}" + (f", {fixed}" if fixed else "")
+                       + _placed(outcome), outcome.curve.source])
+    return fig
+
+
 def _draw_sides(ax, outcome, index, x, n, shown):
     """k/n of the motions that overturned a body with G off the middle to each side, beside
     each stripe where any overturned (``gid`` "left", "right"; docs/bodies.md)."""
@@ -306,7 +349,8 @@ def _cell_label(ax, mesh, x, y, value, bound=False):
 
 def _label(outcome, dim):
     units = outcome.body_coords[dim][1].get("units")
-    return dim + (f" [{units}]" if units not in (None, "1") else "")
+    return outcome.body_coords[dim][1].get("study_axis", dim) + (
+        f" [{units}]" if units not in (None, "1") else "")
 
 
 def save(fig, path):

@@ -21,6 +21,7 @@ from . import stripes as stripe_analysis
 from .hazard_curve import poe_from_rate
 
 STATUS_KNOWN = "known"  # the fragility was given, not fitted
+DESCRIBED = {"body.B": "B", "body.H": "H", "contact.mu": "mu"}  # axes that describe_body says
 
 
 @dataclass
@@ -66,40 +67,55 @@ class RiskOutcome:
         """P in ``years`` per body (NaN where not identifiable), body shape."""
         return _field(self.risks, "probability")
 
+    def axes(self):
+        """The grid's axis of each body dimension, as the risk file names it (``H``,
+        ``contact.mu``, ``excitation.horizontal.building.period``)."""
+        return [self.body_coords[d][1].get("study_axis", d) for d in self.body_dims]
+
+    def units(self):
+        """The units of each axis's SI values (``m``; ``1`` for a number)."""
+        return [self.body_coords[d][1].get("units", "1") for d in self.body_dims]
+
+    def option(self, index):
+        """{axis: SI value} of the body at ``index`` of the grid."""
+        return {a: float(self.body_coords[d][0][i])
+                for a, d, i in zip(self.axes(), self.body_dims, index)}
+
     def labels(self):
-        """A label per body: ``H = 0.8 m, b_over_h = 0.25`` (``body`` for one)."""
+        """A label per body: ``H = 0.8 m, contact.mu = 0.3`` (``body`` for one)."""
         out = np.empty(self.shape, dtype=object)
         for index in np.ndindex(*self.shape):
-            parts = [f"{d} = {self.body_coords[d][0][i]:.4g}"
-                     + (f" {self.body_coords[d][1].get('units')}"
-                        if self.body_coords[d][1].get("units") not in (None, "1") else "")
-                     for d, i in zip(self.body_dims, index)]
+            parts = [f"{a} = {v:.4g}" + (f" {u}" if u != "1" else "")
+                     for (a, v), u in zip(self.option(index).items(), self.units())]
             out[index] = ", ".join(parts) or "body"
         return out
 
     def names(self):
         """A name per body for people, from its parameters: ``B 15 cm × H 60 cm (b/h 0.25),
-        μ 0.8`` (the scene's body with the grid's values); :meth:`labels` without a scene."""
+        μ 0.8`` (the scene's body with the grid's values, and the grid's other axes);
+        :meth:`labels` without a scene."""
         if not self.description:
             return self.labels()
         out = np.empty(self.shape, dtype=object)
         for index in np.ndindex(*self.shape):
-            values = {d: float(self.body_coords[d][0][i]) for d, i in zip(self.body_dims,
-                                                                           index)}
+            values = {DESCRIBED.get(a, a): v for a, v in self.option(index).items()}
             scene = {k: v for k, v in self.description.items()
                      if not (k == "H" and "b_over_h" in values)}  # B/(b/h) sets H
-            out[index] = describe_body({**scene, **values})
+            out[index] = describe_body({**scene, **values}, dict(zip(self.axes(),
+                                                                     self.units())))
         return out
 
     def fixed(self):
         """The body's parameters that the grid does not vary, in words (``μ 0.8``)."""
-        varied = set(self.body_dims) | ({"H"} if "b_over_h" in self.body_dims else set())
+        varied = {DESCRIBED.get(a, a) for a in self.axes()}
+        varied |= {"H"} if "b_over_h" in varied else set()
         return describe_body({k: v for k, v in self.description.items() if k not in varied})
 
 
-def describe_body(values):
+def describe_body(values, units=None):
     """A body in words from {name: SI value} of ``B``, ``H``, ``b_over_h``, ``mu`` (those
-    given): ``B 15 cm × H 60 cm (b/h 0.25), μ 0.8``."""
+    given) and of other axes (their ``units``, {name: unit}): ``B 15 cm × H 60 cm (b/h
+    0.25), μ 0.8, excitation.horizontal.building.period 0.6 s``."""
     breadth, height, ratio = (values.get(k) for k in ("B", "H", "b_over_h"))
     if height is None and breadth is not None and ratio is not None:
         height = breadth / ratio
@@ -111,6 +127,9 @@ def describe_body(values):
                  if v is not None] + ([f"b/h {ratio:.3g}"] if ratio is not None else [])
     if values.get("mu") is not None:
         parts.append(f"μ {values['mu']:.3g}")
+    parts += [f"{k} {v:.4g}" + (f" {(units or {}).get(k)}" if (units or {}).get(k, "1") != "1"
+                                else "")
+              for k, v in values.items() if k not in ("B", "H", "b_over_h", "mu")]
     return ", ".join(parts)
 
 
@@ -368,8 +387,7 @@ def body_record(outcome, index=()):
     on which ``meets_target`` is judged."""
     r, f = outcome.risks[index], outcome.fits[index]
     record = {"body": outcome.labels()[index]}
-    record.update({d: float(outcome.body_coords[d][0][i])
-                   for d, i in zip(outcome.body_dims, index)})
+    record.update(outcome.option(index))
     if outcome.sides is not None:  # each side's angle: G off the middle when they differ
         record.update(alpha_1=float(outcome.sides.alpha_1[index]),
                       alpha_2=float(outcome.sides.alpha_2[index]))
@@ -432,6 +450,7 @@ def report(outcome):
     return {"name": outcome.name, "site": outcome.site, "im": outcome.curve.im,
             "years": outcome.years, "target": outcome.target,
             "bodies": [body_record(outcome, index) for index in np.ndindex(*outcome.shape)],
+            "grid": [{"axis": a, "units": u} for a, u in zip(outcome.axes(), outcome.units())],
             "hazard": hazard_record(outcome), "placement": outcome.placement,
             "warnings": list(outcome.warnings)}
 

@@ -23,8 +23,9 @@ of the hazard's IM, and the axes of the motions set the ground's keys
 (``excitation.horizontal.ground.seed``, ``.magnitude``, ``.distance``, ``.name`` or ``.path``).
 
 Each stripe is an ordinary study (``<folder>/<name>_stripe<j>.yaml`` and ``.nc``): grid = the
-body axes of the risk map, if any, × the motions (a zip of ``seed``, magnitude and distance),
-run through the runner (``runner.launch.run_file``, as ``python -m sweep.run`` runs it; a
+axes of the risk map, if any (the body's, its contact's, its solver's or its building's:
+``sweep.io.risk_schema`` refuses an axis that sets the motion), × the motions (a zip of
+``seed``, magnitude and distance), run through the runner (``runner.launch.run_file``, as ``python -m sweep.run`` runs it; a
 dataset whose fingerprint matches its inputs is reused).  SI units.
 """
 from collections import namedtuple
@@ -141,7 +142,7 @@ def study_dict(stripe, scene, vs30, grid, name, output, motion_model="boore2003"
     """The study of one stripe: the base ``scene`` (body, contact, solver, and a building's
     floor if it has one), a synthetic horizontal motion scaled to the stripe's level of ``im``
     (or the records of a :func:`record_plan`), on the ground or as the floor's ground;
-    grid = ``grid`` (body axes) × the motions."""
+    grid = ``grid`` (the risk map's axes) × the motions."""
     if stripe.seeds is None:
         return _record_study(stripe, scene, grid, name, output, im)
     scaled, said = scaling(im, stripe.level)
