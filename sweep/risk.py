@@ -508,7 +508,8 @@ def main(argv=None):
         print(FileProblems(unusable), file=sys.stderr)
         return EXIT_BAD_INPUT
     from .io.problems import cautions, reported
-    from .probability.risk_report import report, to_dataset, write_dataset
+    from .probability.risk_dataset import to_dataset, write_dataset
+    from .probability.risk_report import report
     from .probability.site_studies import RunFailed
     from .runner.mpi import first_process
 
