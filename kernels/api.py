@@ -3,11 +3,12 @@
 A *resolved scene* is a plain nested dict in SI units (what ``sweep.schema`` produces from a
 YAML file, or what a notebook writes by hand)::
 
-    {"body": {"B": 0.1, "H": 0.3, "i_g": None, "G": None},  # i_g: radius of gyration about G
-                                            # G: [x_G, y_G] from the middle of the base
+    {"body": {"B": 0.1, "H": 0.3, "i_g": None, "G": None,  # i_g: radius of gyration about G
+              "mass": None},                # G: [x_G, y_G] from the middle of the base; kg
      "contact": {"mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x", "e_y",
                  "landing": "face_friction" | "flat" | "corner"},
      "excitation": {"horizontal": GROUND, "vertical": GROUND},
+     "restraint": None | {"kind": "anchor", "strength": N},   # needs body.mass
      "initial": {"theta", "omega", "x_dot", "y_dot", "lift"},
      "solver": {"method": "adaptive" | "fixed", "rtol", "atol", "dt", "max_step", "t_end",
                 "max_steps", "max_events", "theta_overturn", "zeno_dt", "dt_out"}}
@@ -18,8 +19,8 @@ GROUND is ``{"kind": "none"}`` or, with optional ``start`` [s] and ``duration`` 
 held quantity, "f_start": Hz, "f_stop": Hz, "duration": s, "law": "log"|"linear", "phase": rad}``,
 ``{"kind": "record", "samples": ndarray m/s^2, "dt": s, "scale": 1.0}``,
 ``{"kind": "pulse", "shape": "rectangular"|"triangular", "amplitude": m/s^2, "duration": s}``.
-Missing keys take the values of ``DEFAULTS``.  Sign convention: x and a_x positive to the
-right, theta > 0 is rotation about the left corner (docs/physics.md section 1.1).
+Missing keys take the values of ``DEFAULTS``.  An anchored body starts flat at rest
+(docs/anchors.md).  Sign convention: x and a_x positive to the right, theta > 0 is rotation about the left corner (docs/physics.md section 1.1).
 """
 import math
 import time
@@ -32,7 +33,7 @@ from .record_cache import RecordCache
 from .watchdog import Watchdog, control
 
 DEFAULTS = {
-    "body": {"i_g": None, "G": None},
+    "body": {"i_g": None, "G": None, "mass": None},
     "contact": {"mu_s": 0.4, "mu_k": 0.3, "mu_edge_s": 0.4, "mu_edge_k": 0.3,
                 "e_x": -0.8, "e_y": 0.2, "landing": "face_friction"},
     "initial": {"theta": 0.0, "omega": 0.0, "x_dot": 0.0, "y_dot": 0.0, "lift": 0.0},
@@ -255,7 +256,26 @@ def scene_row(scene, records=None):
     for axis, component in (("x", "horizontal"), ("y", "vertical")):
         ground = _ground_fields(excitation.get(component), f"excitation.{component}", records)
         row.update({f"floor.{axis}.{name}": value for name, value in ground.items()})
+    row.update(_restraint_fields(scene.get("restraint"), body, initial))
     return np.frombuffer(np.fromiter(row.values(), np.float64), _SCENE_RECORD)[0]
+
+
+def _restraint_fields(restraint, body, initial):
+    """The ``restraint`` fields of a scene row: its kind and the strength of a tie per unit
+    mass, T/m (docs/anchors.md)."""
+    if not restraint:
+        return {}
+    if restraint.get("kind") != "anchor":
+        raise PackingError("restraint.kind", f"must be 'anchor', got {restraint.get('kind')!r}")
+    strength = _number(restraint.get("strength"), "restraint.strength")
+    if strength < 0:
+        raise PackingError("restraint.strength", f"must be >= 0, got {strength!r}")
+    if body.get("mass") is None:
+        raise PackingError("body.mass", "is required by an anchor (its strength is a force)")
+    mass = _number(body["mass"], "body.mass", positive=True)
+    if any(initial[key] != 0 for key, _, _ in _INITIAL):
+        raise PackingError("initial", "must be rest, flat on the floor, for an anchored body")
+    return {"restraint.kind": float(codes.RESTRAINT_ANCHOR), "restraint.tie": strength / mass}
 
 
 def as_records(rows):
@@ -280,13 +300,15 @@ SceneResult = namedtuple("SceneResult", [
     "status", "message", "overturned", "t_overturn", "overturn_direction", "impact_times",
     "omega_after", "impact_slipped", "impact_count", "impact_log_truncated", "max_abs_theta",
     "t_rest", "mode_time", "max_slip", "max_travel", "max_lift", "steps", "events", "energy_clamps",
-    "t_final", "f_at_overturn", "a_at_overturn", "v_at_overturn", "cpu_s", "history"])
+    "t_final", "f_at_overturn", "a_at_overturn", "v_at_overturn", "cpu_s", "history",
+    "restraint_broken", "t_broken"])
 SceneResult.__doc__ = """Result of one scene: the JSON contract of docs/design.md section 4 plus
 extras.  ``impact_times``, ``omega_after`` and ``impact_slipped`` hold the first ``max_log``
 impacts of ``impact_count`` (``impact_log_truncated`` when fewer); ``history`` is None or a
 dict of arrays named by ``codes.HISTORY_NAMES``.  ``max_slip`` is how far the base moved along
 the floor (``extremes.footprint``), ``max_travel`` the largest |x - x0| of G, rotation
-included."""
+included.  ``restraint_broken`` is whether a restraint gave way, at ``t_broken`` [s] (None
+when it held or there is none)."""
 
 
 def _nan_to_none(x):
@@ -369,7 +391,8 @@ def run_scene(scene, history=False, max_log=MAX_LOG):
         f_at_overturn=_nan_to_none(out["f_at_overturn"]),
         a_at_overturn=_nan_to_none(out["a_at_overturn"]),
         v_at_overturn=_nan_to_none(out["v_at_overturn"]),
-        cpu_s=cpu,
+        cpu_s=cpu, restraint_broken=math.isfinite(out["t_broken"]),
+        t_broken=_nan_to_none(out["t_broken"]),
         history={name: hist[:n_h, j].copy() for j, name in enumerate(codes.HISTORY_NAMES)}
         if history else None)
 

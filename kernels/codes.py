@@ -69,6 +69,11 @@ HOLD_ACCELERATION, HOLD_VELOCITY, HOLD_DISPLACEMENT = 0, 1, 2
 LANDING_FLAT, LANDING_FACE_FRICTION, LANDING_CORNER = range(3)
 LANDING_NAMES = ("flat", "face_friction", "corner")
 
+# --- restraints (scene section ``restraint``): none, or an anchor, a tension-only tie at
+# each corner of the base that breaks for good above its strength (docs/anchors.md)
+RESTRAINT_NONE, RESTRAINT_ANCHOR = 0, 1
+RESTRAINT_NAMES = ("none", "anchor")
+
 # --- the scene record: what compiled code reads of one scene, by name -----------------------
 # ``row.body.B``, ``row.floor.x.amp``, ``row.solver.rtol``: one pointer, float64 fields, SI.
 # A ground component (``floor.x`` horizontal, ``floor.y`` vertical):
@@ -85,7 +90,8 @@ GROUND_DTYPE = np.dtype([(name, "f8") for name in (
 # base (x_g, y_g) [m] (symmetric: 0, H/2; docs/bodies.md); contact: friction,
 # restitution and the landing law (a LANDING_* code); initial: theta [rad], omega [rad/s],
 # u, v [m/s] and lift [m]; solver: method (ADAPTIVE/FIXED) and the options of
-# ``kernels.api.DEFAULTS`` (theta_over: the overturning angle [rad]).
+# ``kernels.api.DEFAULTS`` (theta_over: the overturning angle [rad]); restraint: a
+# RESTRAINT_* code and the strength of one tie per unit mass of the body, T/m [m/s^2].
 SCENE_DTYPE = np.dtype([
     ("body", [(name, "f8") for name in ("B", "H", "i2", "x_g", "y_g")]),
     ("contact", [(name, "f8") for name in ("mu_s", "mu_k", "mu_edge_s", "mu_edge_k", "e_x",
@@ -95,6 +101,7 @@ SCENE_DTYPE = np.dtype([
                                           "max_steps", "max_events", "theta_over",
                                           "zeno_dt", "dt_out")]),
     ("floor", [("x", GROUND_DTYPE), ("y", GROUND_DTYPE)]),
+    ("restraint", [("kind", "f8"), ("tie", "f8")]),
 ])
 
 # --- the result record of one scene (``driver._report`` fills it) ---------------------------
@@ -103,13 +110,14 @@ SCENE_DTYPE = np.dtype([
 # max_slip: how far the base moved along the floor (``extremes.footprint``); max_travel: the
 # largest |x - x0| of G, rotation included; *_at_overturn: the floor's frequency [Hz],
 # acceleration and velocity amplitude (``ground.amplitudes``) at overturning, else NaN;
-# energy_clamps: impacts whose restitution was clamped; mode_time: seconds in each mode.
+# energy_clamps: impacts whose restitution was clamped; mode_time: seconds in each mode;
+# t_broken: when the restraint broke (NaN: it held, or there is none).
 RESULT_DTYPE = np.dtype([
     ("status", "i8"), ("t_end", "f8"), ("t_overturn", "f8"), ("direction", "i8"),
     ("max_abs_theta", "f8"), ("impacts", "i8"), ("t_rest", "f8"), ("max_slip", "f8"),
     ("max_lift", "f8"), ("steps", "i8"), ("events", "i8"), ("energy_clamps", "i8"),
     ("f_at_overturn", "f8"), ("a_at_overturn", "f8"), ("v_at_overturn", "f8"),
-    ("max_travel", "f8"), ("mode_time", "f8", (N_MODES,)),
+    ("max_travel", "f8"), ("mode_time", "f8", (N_MODES,)), ("t_broken", "f8"),
 ])
 
 # Impact flag bits (what an impact law did)

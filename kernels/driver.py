@@ -22,7 +22,8 @@ import numpy as np
 from ._jit import jit
 from .codes import (ADAPTIVE, BUDGET_EXHAUSTED, CLAMPED, CTL_CELL, CTL_STOP, CTX_S,
                     CTX_SIGMA, IOMEGA, ITHETA, LOG_FLAGS, LOG_OMEGA, LOG_T, N_HIST, N_LOG,
-                    N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, REST, TIME_BUDGET)
+                    N_MODES, N_STATE, NON_FINITE, OK, OVERTURNED, PAINLEVE, REST,
+                    RESTRAINT_ANCHOR, TIME_BUDGET)
 from .event_search import first_event, polish
 from .events import event_values, n_events
 from .extremes import (BASE_REF, MAX_LIFT, MAX_SLIP, MAX_THETA, MAX_TRAVEL, observe,
@@ -31,7 +32,7 @@ from .ground import G, amplitudes, ground, ground_end, next_break
 from .history import hold, sample_step
 from .integrate import FIRST_STEP, fit_dense, next_step_size, step
 from .motion import from_full, n_dof, rhs, to_full
-from .rest_skipping import rest_exit, rest_threshold
+from .rest_skipping import anchored_threshold, rest_exit, rest_threshold
 from .state import Step, new_work, scene_of
 from .tableaus import tableau
 from .tolerances import (BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, RETRY_SHRINK,
@@ -65,7 +66,7 @@ def _finite(z, n):
 
 
 @jit
-def _report(res, status, t, t_rest, mode, counts, scene, work):
+def _report(res, status, t, t_rest, t_broken, mode, counts, scene, work):
     """Fill the result record ``res`` (``codes.RESULT_DTYPE``); counts = (impacts, steps,
     events, clamps)."""
     q = work.q
@@ -84,6 +85,7 @@ def _report(res, status, t, t_rest, mode, counts, scene, work):
     res.max_travel = work.extremes[MAX_TRAVEL]
     res.max_lift = work.extremes[MAX_LIFT]
     res.impacts, res.steps, res.events, res.energy_clamps = counts
+    res.t_broken = t_broken
     for m in range(N_MODES):
         res.mode_time[m] = work.mode_time[m]
 
@@ -120,7 +122,7 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     docs/physics.md sections 1-3; docs/design.md section 3.
     """
     scene = scene_of(row)
-    body, contact, floor, solver, _ = scene
+    body, contact, floor, solver, _, restraint = scene
     method = int(solver.method)
     adaptive = method == ADAPTIVE     # the step size is controlled
     tab = tableau(method)
@@ -131,7 +133,9 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     end = tab.stages
     t_end = solver.t_end
     t_still = ground_end(floor)
-    kappa = rest_threshold(body, contact)
+    held = restraint.kind == RESTRAINT_ANCHOR        # an anchor holds the body at rest
+    kappa = anchored_threshold(body, restraint.tie) if held else rest_threshold(body, contact)
+    t_broken = math.nan
 
     status = OK
     err_old = ERR_FLOOR
@@ -146,6 +150,8 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     cell = ctl[CTL_CELL]              # a stop request names the cell, never a later one
     dt_next = solver.dt if not adaptive else min(solver.max_step, FIRST_STEP)
     mode, s, sigma = initial_mode(q, scene, rec)
+    if held:                                          # (it starts flat at rest: api)
+        mode, s, sigma = REST, 0.0, 0.0
     if not _enter(mode, s, sigma, t, scene, rec, q, z, K, ctx, g_old):
         status = PAINLEVE
     t_rest = 0.0 if mode == REST else math.nan
@@ -168,6 +174,10 @@ def run_scene(row, rec, res, log, hist, ctl, work):
             if te >= t_end:
                 break
             a_x, a_y = ground(t, floor, rec)
+            if held:                                    # a tie gives way, for good
+                held = False
+                t_broken = t
+                kappa = rest_threshold(body, contact)
             mode, s, sigma = leave_rest(a_x, G + a_y, body, contact)
             if mode == REST:                            # exactly at the threshold
                 t += THRESHOLD_NUDGE * max(1.0, t)
@@ -276,7 +286,8 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     if status == OK and mode == REST and t < t_end:
         mode_time[REST] += t_end - t                    # final rest lasts to the end
         nh = hold(hist, nh, t_end, q, REST, floor, rec, solver.dt_out)
-    _report(res, status, t, t_rest, mode, (impacts, steps, events, clamps), scene, work)
+    _report(res, status, t, t_rest, t_broken, mode, (impacts, steps, events, clamps), scene,
+            work)
     return nlog, nh
 
 

@@ -4,7 +4,9 @@ A body at rest leaves rest when |a_x| > mu_s g_e, |a_x| > (b_s/h) g_e or g_e < 0
 (docs/physics.md 1.3; s the corner the floor drives the body towards: b1 for a_x > 0, b2 for
 a_x < 0), i.e. when phi(t) = max(a_x - kappa_+ g_e, -a_x - kappa_- g_e) > 0 with
 kappa_+ = min(mu_s, b1/h) and kappa_- = min(mu_s, b2/h) (|a_x| - kappa g_e for a symmetric
-body).
+body).  An anchored body (docs/anchors.md) is held until a tie must pull harder than its
+strength T: phi(t) = max(a_x - (b1 g_e + T' B)/h, -a_x - (b2 g_e + T' B)/h), T' = T/m, the far
+corner's tie with arm B = b1 + b2; it neither slides nor rocks before.
 The floor is scanned in intervals that hold at most one extremum of a smooth component
 (1/8 of its period) and never cross a break of the motion; where a sampled slope bound
 allows phi to rise above zero inside an interval, its peak is found by golden-section
@@ -21,18 +23,27 @@ from .tolerances import BREAK_GUARD, PEAK_XTOL, REST_XTOL
 
 @jit
 def rest_threshold(body, contact):
-    """(kappa_+, kappa_-): rest ends when a_x > kappa_+ g_e or -a_x > kappa_- g_e."""
-    return min(contact.mu_s, body.b1 / body.h), min(contact.mu_s, body.b2 / body.h)
+    """(kappa_+, kappa_-, c): rest ends when a_x > kappa_+ g_e + c or -a_x > kappa_- g_e + c;
+    c = 0 for a free body."""
+    return min(contact.mu_s, body.b1 / body.h), min(contact.mu_s, body.b2 / body.h), 0.0
+
+
+@jit
+def anchored_threshold(body, tie):
+    """(kappa_+, kappa_-, c) of a body held by its anchor's ties of strength T' = ``tie``
+    per unit mass: the tie of the far corner gives way at a_x h = b_s g_e + T' (b1 + b2)
+    (docs/anchors.md (1))."""
+    return body.b1 / body.h, body.b2 / body.h, tie * (body.b1 + body.b2) / body.h
 
 
 @jit
 def _phi(t, args):
-    """max(a_x - kappa_+ g_e, -a_x - kappa_- g_e) at t (args = (kappa, floor, rec));
-    rest ends where it is > 0."""
+    """max(a_x - kappa_+ g_e - c, -a_x - kappa_- g_e - c) at t (args = (kappa, floor,
+    rec)); rest ends where it is > 0."""
     kappa, floor, rec = args
     a_x, a_y = ground(t, floor, rec)
     g_e = G + a_y
-    return max(a_x - kappa[0] * g_e, -a_x - kappa[1] * g_e)
+    return max(a_x - kappa[0] * g_e - kappa[2], -a_x - kappa[1] * g_e - kappa[2])
 
 
 _crossing = bisect(_phi)

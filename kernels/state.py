@@ -34,10 +34,10 @@ Contact.__doc__ = """Friction of the surface (mu_s, mu_k: face contact) and of t
 of a landing after a translation jump (a ``codes.LANDING_*`` code, default flat).  Flat
 sliding sees mu_k through ``motion.sliding_friction``."""
 
-Scene = namedtuple("Scene", "body contact floor solver initial")
+Scene = namedtuple("Scene", "body contact floor solver initial restraint")
 Scene.__doc__ = """``Body`` and ``Contact`` (derived from the row), and the row's own records of
-``codes.SCENE_DTYPE``: floor (x, y: ``codes.GROUND_DTYPE``), solver options and initial
-values, read by name."""
+``codes.SCENE_DTYPE``: floor (x, y: ``codes.GROUND_DTYPE``), solver options, initial
+values and the restraint, read by name."""
 
 MAX_EVENTS = 5        # the most event functions of any mode (``events.n_events``)
 
@@ -77,7 +77,7 @@ def scene_of(row):
     c = row.contact
     contact = Contact(c.mu_s, c.mu_k, c.mu_edge_s, c.mu_edge_k, c.e_x, c.e_y, c.landing)
     return Scene(Body(b + row.body.x_g, b - row.body.x_g, row.body.y_g, row.body.i2), contact,
-                 row.floor, row.solver, row.initial)
+                 row.floor, row.solver, row.initial, row.restraint)
 
 
 @jit(runtime=True)
