@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: install run scenes test test-nojit test-cudasim validate bench bench-gpu figures \
+.PHONY: install run scenes test test-nojit test-cudasim ptx validate bench bench-gpu figures \
   rate-study clean
 
 $(STAMP): pyproject.toml
@@ -39,7 +39,13 @@ test-nojit: $(STAMP)
 # The CUDA kernel without a GPU (docs/gpu.md): installs the cuda extra into the venv
 test-cudasim: install
 	$(PY) -m pip install --quiet -e '.[cuda]'
-	$(PY) -m pytest -m "slow or not slow" -q tests/kernels/test_cuda_batch.py
+	$(PY) -m pytest -m "slow or not slow" -q tests/kernels/test_cuda_batch.py tests/kernels/test_ptx.py
+
+# The kernel's PTX for sm_90 and its figures (ptxas -v: registers, spills), no GPU needed
+ptx: install
+	$(PY) -m pip install --quiet -e '.[cuda]'
+	mkdir -p results
+	$(PY) -m benchmarks.gpu --ptx results/kernel_sm90.ptx
 
 validate: install
 	$(PY) -m pytest -m slow -q

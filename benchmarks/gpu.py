@@ -11,11 +11,19 @@ yardstick: GPU compilers fuse a*b + c into one rounding, so the GPU's overturnin
 differ from the CPU's by as much as the CPU's own do when only that changes (chaotic rocking
 amplifies the last bit).  Statuses must be identical.  Writes a Markdown report
 (``-o``, default ``results/bench_gpu.md``); refuses, with exit status 2, without a GPU.
+
+``--ptx FILE`` needs no GPU: it writes the kernel's PTX for sm_90 and prints its figures
+(lines, byte loads, ``bfi``) and, where the CUDA toolkit's ``ptxas`` is installed (the cuda
+extra's ``nvidia-cuda-nvcc``), those of ``ptxas -v``: registers per thread, spills, stack.
 """
 import argparse
 import collections
+import importlib.util
 import multiprocessing
 import os
+import re
+import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -136,6 +144,64 @@ def compare(name, rows, rec):
         flips_gpu == 0 and within_noise(dt_gpu, dt_fused)
 
 
+PTX_CC = (9, 0)                   # the H100's and H200's compute capability
+# a load of one byte from memory: ld.u8, ld.global.u8, ld.local.nc.u8, ... (not ld.param.u8,
+# a byte-sized argument of a function that was not inlined: a boolean, no record field)
+BYTE_LOAD = re.compile(r"\bld(?:\.(?:global|local|shared|const|nc))*\.[us]8\b")
+_ENTRY = re.compile(r"Compiling entry function '(\S+)'")
+
+
+def ptx_figures(ptx):
+    """Lines, byte loads (:data:`BYTE_LOAD`) and ``bfi`` (bit-field inserts: the bytes of a
+    byte-wise load put together) of a PTX text."""
+    return {"lines": ptx.count("\n"), "byte loads": len(BYTE_LOAD.findall(ptx)),
+            "bfi": len(re.findall(r"\bbfi\.", ptx))}
+
+
+def ptxas_path():
+    """The ``ptxas`` of the cuda extra (nvidia-cuda-nvcc's bin), else one on PATH, else None."""
+    spec = importlib.util.find_spec("nvidia.cuda_nvcc")
+    for folder in (spec.submodule_search_locations if spec else ()):
+        if (Path(folder) / "bin" / "ptxas").is_file():
+            return str(Path(folder) / "bin" / "ptxas")
+    return shutil.which("ptxas")
+
+
+def ptxas_figures(path, ptxas):
+    """Registers per thread, spill stores and loads and stack frame [bytes] of the entry
+    function of the PTX file ``path``, from ``ptxas -v`` for sm_90, and its seconds."""
+    t0 = time.perf_counter()
+    said = subprocess.run([ptxas, "-v", f"-arch=sm_{PTX_CC[0]}{PTX_CC[1]}", str(path), "-o",
+                           os.devnull], capture_output=True, text=True, check=True).stderr
+    entry = re.escape(_ENTRY.search(said).group(1))
+    stack, stores, loads = re.search(
+        rf"Function properties for {entry}\s+(\d+) bytes stack frame, (\d+) bytes spill "
+        r"stores, (\d+) bytes spill loads", said).groups()
+    registers = re.search(rf"Function properties for {entry}\s+.*\n.*Used (\d+) registers",
+                          said).group(1)
+    return {"registers": int(registers), "spill stores [B]": int(stores),
+            "spill loads [B]": int(loads), "stack frame [B]": int(stack),
+            "ptxas [s]": round(time.perf_counter() - t0, 1)}
+
+
+def write_ptx(path):
+    """Write the kernel's PTX for sm_90 to ``path`` and print its figures (0), or say in one
+    line why it cannot be compiled (2)."""
+    if importlib.util.find_spec("numba_cuda") is None:
+        print("benchmarks.gpu: --ptx needs numba-cuda (pip install '.[cuda]'); nothing was "
+              "written", file=sys.stderr)
+        return 2
+    t0 = time.process_time()
+    text = door.ptx(PTX_CC)
+    figures = {"PTX compile [CPU s]": round(time.process_time() - t0, 1), **ptx_figures(text)}
+    path.write_text(text)
+    ptxas = ptxas_path()
+    figures.update(ptxas_figures(path, ptxas) if ptxas else {"ptxas": "not found"})
+    print(f"{path}: " + ", ".join(f"{name} {value:,}" if isinstance(value, int) else
+                                  f"{name} {value}" for name, value in figures.items()))
+    return 0
+
+
 def _device_name(device):
     """The GPU's name (bytes in older numba-cuda, str in newer)."""
     name = device.name
@@ -149,7 +215,12 @@ def main(argv=None):
                         help="1,000 map cells and 240 of the ensemble (a smoke run)")
     parser.add_argument("-o", "--output", type=Path, default=OUTPUT,
                         help="report file (default %(default)s)")
+    parser.add_argument("--ptx", type=Path, metavar="FILE",
+                        help="no GPU needed: write the kernel's PTX for sm_90 to FILE and print "
+                             "its figures (and ptxas -v's, where ptxas is installed)")
     args = parser.parse_args(argv)
+    if args.ptx:
+        return write_ptx(args.ptx)
     why = door.unavailable()
     if why is not None:
         print(f"benchmarks.gpu: needs an NVIDIA GPU and numba-cuda: {why}; nothing was run",

@@ -75,6 +75,8 @@ RESTRAINT_NONE, RESTRAINT_ANCHOR = 0, 1
 RESTRAINT_NAMES = ("none", "anchor")
 
 # --- the scene record: what compiled code reads of one scene, by name -----------------------
+# The records here and in ``state`` are built with align=True: numba-cuda loads the float64
+# fields of a packed record a byte at a time.  Every field is 8 bytes: the layout is the same.
 # ``row.body.B``, ``row.floor.x.amp``, ``row.solver.rtol``: one pointer, float64 fields, SI.
 # A ground component (``floor.x`` horizontal, ``floor.y`` vertical):
 #   kind: a G_* code; amp: sine/pulse: acceleration amplitude [m/s^2]; sweep: the held
@@ -85,7 +87,7 @@ RESTRAINT_NAMES = ("none", "anchor")
 #   rec_off, rec_n, rec_dt: slice of the shared record buffer and its sample step [s]
 GROUND_DTYPE = np.dtype([(name, "f8") for name in (
     "kind", "amp", "freq", "phase", "start", "dur", "f0", "f1", "law", "hold",
-    "rec_off", "rec_n", "rec_dt")])
+    "rec_off", "rec_n", "rec_dt")], align=True)
 # body: breadth, height [m], squared radius of gyration about G [m^2], G from the middle of the
 # base (x_g, y_g) [m] (symmetric: 0, H/2; docs/bodies.md); contact: friction,
 # restitution and the landing law (a LANDING_* code); initial: theta [rad], omega [rad/s],
@@ -102,7 +104,7 @@ SCENE_DTYPE = np.dtype([
                                           "zeno_dt", "dt_out")]),
     ("floor", [("x", GROUND_DTYPE), ("y", GROUND_DTYPE)]),
     ("restraint", [("kind", "f8"), ("tie", "f8")]),
-])
+], align=True)
 
 # --- the result record of one scene (``driver._report`` fills it) ---------------------------
 # status: a status code; t_end: the time reached [s]; t_overturn, t_rest: NaN when it did not
@@ -118,7 +120,7 @@ RESULT_DTYPE = np.dtype([
     ("max_lift", "f8"), ("steps", "i8"), ("events", "i8"), ("energy_clamps", "i8"),
     ("f_at_overturn", "f8"), ("a_at_overturn", "f8"), ("v_at_overturn", "f8"),
     ("max_travel", "f8"), ("mode_time", "f8", (N_MODES,)), ("t_broken", "f8"),
-])
+], align=True)
 
 # Impact flag bits (what an impact law did)
 SLIPPED = 1              # the impulse left the friction cone: the contact slipped

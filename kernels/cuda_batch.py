@@ -3,22 +3,27 @@
 ``driver.run_scene`` is the device function as it is: numba-cuda compiles a CPU-compiled
 function called from a CUDA kernel for the device from its Python source, with every function
 it calls, so the CPU and the GPU run one source.  What device code cannot do, the source
-leaves to its callers: the scene's buffers (``state.WORK_DTYPE``) are allocated here, one
-record per row in device memory, zeroed, as ``driver.run_cells`` allocates them on the CPU.
-A thread runs its scene to the end (DiffEqGPU's per-thread ensemble kernels, MPGOS): there
-is no wall-time budget on the device, only the scene's step and event budgets.  A study's
-records stay in device memory from chunk to chunk (:class:`DeviceRecords`).
+leaves to its callers: the scene's buffers (``state.WORK_DTYPE``) are a record in each
+thread's local memory, zeroed by the thread, as ``driver.run_cells`` zeroes them on the CPU
+(local memory interleaves the threads' words, so a warp's lanes read neighbouring
+addresses).  A thread runs its scene to the end (DiffEqGPU's per-thread ensemble kernels,
+MPGOS): there is no wall-time budget on the device, only the scene's step and event
+budgets.  A study's records stay in device memory from chunk to chunk
+(:class:`DeviceRecords`).  The compiled kernel is cached on disk beside the CPU's, in
+``_jit.CACHE_DIR`` (named after the digest of the kernel's sources; numba-cuda's cache keys
+hold the compute capability).
 
 Imported only for ``--backend cuda``: it needs numba-cuda (``pip install .[cuda]``) and, to
 run, a GPU or the CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``).
 """
+import contextlib
 import functools
 
 import numpy as np
 
 if not hasattr(np, "row_stack"):   # numpy 2.5 removed it; numba-cuda 0.30 still overloads it
     np.row_stack = np.vstack
-from numba import cuda  # noqa: E402  (after the shim)
+from numba import cuda, float64, from_dtype, int64  # noqa: E402  (after the shim)
 
 from . import api, codes
 from ._jit import launcher_rank
@@ -26,16 +31,49 @@ from .driver import run_scene
 from .state import WORK_DTYPE
 from .watchdog import control
 
-THREADS_PER_BLOCK = 64   # scenes per block; a thread's registers, not shared memory, bound it
-BATCH = 1 << 16          # scenes per launch: their buffers take BATCH x 1.2 kB of device memory
+THREADS_PER_BLOCK = 128  # scenes per block; a thread's registers, not shared memory, bound it
+BATCH = 1 << 20          # scenes per launch, in grid order: rows and results take 0.6 kB each
+_WORK = np.dtype((np.record, WORK_DTYPE))   # read by field name, also on the simulator
 
 
-@cuda.jit
-def _run_rows(rows, rec, results, works, log, hist, ctl):
+@cuda.jit(cache=True)
+def _run_rows(rows, rec, results, log, hist, ctl):
     """Scene row i of ``rows`` into record i of ``results``, thread by thread."""
     i = cuda.grid(1)
     if i < rows.shape[0]:
-        run_scene(rows[i], rec, results[i], log, hist, ctl, works[i])
+        work = cuda.local.array(1, _WORK)
+        words = work.view(np.float64)
+        for k in range(words.size):
+            words[k] = 0.0
+        run_scene(rows[i], rec, results[i], log, hist, ctl, work[0])
+
+
+def _argument_types():
+    """The types of ``_run_rows``'s arguments as :func:`run_cells` passes them."""
+    row, result = (from_dtype(d) for d in (codes.SCENE_DTYPE, codes.RESULT_DTYPE))
+    return row[::1], float64[::1], result[::1], float64[:, ::1], float64[:, ::1], int64[::1]
+
+
+@contextlib.contextmanager
+def _compute_capability(cc):
+    """Compile for ``cc`` without a GPU: numba-cuda asks the current device for its compute
+    capability when it compiles a device function, even for PTX alone."""
+    from numba.cuda import dispatcher
+
+    class Target:
+        compute_capability = cc
+    asked = dispatcher.get_current_device
+    dispatcher.get_current_device = Target
+    try:
+        yield
+    finally:
+        dispatcher.get_current_device = asked
+
+
+def ptx(cc=(9, 0)):
+    """The kernel's PTX for compute capability ``cc`` (NVVM; no GPU needed)."""
+    with _compute_capability(cc):
+        return cuda.compile_ptx(_run_rows.py_func, _argument_types(), cc=cc)[0]
 
 
 def available():
@@ -103,9 +141,8 @@ def run_cells(rows, rec, batch=BATCH):
     for start in range(0, rows.shape[0], batch):
         part = rows[start:start + batch]
         d_results = cuda.to_device(results[start:start + batch])
-        works = cuda.to_device(np.zeros(part.shape[0], WORK_DTYPE))
         blocks = (part.shape[0] + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
-        _run_rows[blocks, THREADS_PER_BLOCK](cuda.to_device(part), d_rec, d_results, works,
-                                             log, hist, ctl)
+        _run_rows[blocks, THREADS_PER_BLOCK](cuda.to_device(part), d_rec, d_results, log, hist,
+                                             ctl)
         results[start:start + batch] = d_results.copy_to_host()
     return results

@@ -29,3 +29,10 @@ def run_cells(rows, rec):
     result records; ``rec`` is a host record buffer or a device one (:func:`device_records`)."""
     from . import cuda_batch
     return cuda_batch.run_cells(rows, rec)
+
+
+def ptx(cc=(9, 0)):
+    """The chunk kernel's PTX for compute capability ``cc``, compiled without a GPU
+    (``cuda_batch.ptx``; needs numba-cuda and its NVVM)."""
+    from . import cuda_batch
+    return cuda_batch.ptx(cc)

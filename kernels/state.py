@@ -42,12 +42,12 @@ values and the restraint, read by name."""
 MAX_EVENTS = 5        # the most event functions of any mode (``events.n_events``)
 
 VALUES_DTYPE = np.dtype([("old", "f8", (MAX_EVENTS,)), ("new", "f8", (MAX_EVENTS,)),
-                         ("last", "f8", (MAX_EVENTS,))])
+                         ("last", "f8", (MAX_EVENTS,))], align=True)
 """Event function values at the step's start (old), at a sample inside it (new) and at the
 last sample without an event (last)."""
 
 SCRATCH_DTYPE = np.dtype([("z", "f8", (N_STATE,)), ("q", "f8", (N_STATE,)),
-                          ("g", "f8", (MAX_EVENTS,))])
+                          ("g", "f8", (MAX_EVENTS,))], align=True)
 """Scratch for a state taken from the dense output: compact z, full q, and the event
 values g computed on the way."""
 
@@ -57,7 +57,7 @@ WORK_DTYPE = np.dtype([("q", "f8", (N_STATE,)), ("z", "f8", (N_STATE,)),
                        ("D", "f8", (DENSE_DEGREE, N_STATE)), ("ctx", "f8", (N_CTX,)),
                        ("values", VALUES_DTYPE),
                        ("scratch", SCRATCH_DTYPE), ("extremes", "f8", (N_EXTREMES,)),
-                       ("mode_time", "f8", (N_MODES,))])
+                       ("mode_time", "f8", (N_MODES,))], align=True)
 """The buffers of one scene, as one record: the full state q at the step's start and q_end
 at its end, the mode's compact state z and z_new, stage scratch, the stages K, the
 coefficients D of the dense output, the mode's contact ``ctx`` (``codes.CTX_*``), the event

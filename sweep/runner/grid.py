@@ -26,7 +26,8 @@ from ..io.vocabulary import (AXES, COMPUTED, FIELD_DIMENSIONS, MU_PATHS,  # noqa
 
 MAX_CHUNK = 64  # cells per chunk at most by default: a part file every few seconds at worst
 CHUNKS_PER_RANK = 16  # default chunk size aims at this many chunks per rank (balance, resume)
-CUDA_CHUNK = 1 << 15  # GPU chunk at most: threads to fill a GPU, done well inside the rank watch
+CUDA_CHUNK = 1 << 20  # GPU chunk at most: one launch of many waves of resident threads
+MIN_GPU_CELLS = 20_000  # a study of fewer cells runs on the CPU: too few for a GPU to win
 
 
 # --- chunks ---------------------------------------------------------------------

@@ -102,6 +102,14 @@ def _backend_refused(path, study, options):
     return True
 
 
+def _say_gpu_declined(study, options, name="sweep.run"):
+    """Say in one line that the GPU asked for is left alone: the study is too small."""
+    if options.gpu_declined(study):
+        say(f"{name}: {study.n_cells:,} cells run on the CPU: fewer than "
+            f"{grid.MIN_GPU_CELLS:,} are too few for the GPU to win (docs/gpu.md)",
+            file=sys.stderr)
+
+
 def _open(study, options, parts):
     """Take the output's lock and make the output and parts ready (rank 0).
 
@@ -159,6 +167,7 @@ def _plan(comm, path, options):
         return [Stop(refused=True)] * size, None, None, None
     if _backend_refused(path, study, options):
         return [Stop(refused=True)] * size, None, None, None
+    _say_gpu_declined(study, options)
     parts = store.PartStore(store.parts_dir(study.output))
     if options.dry_run:
         done = parts.done_cells() if parts.directory.is_dir() else []
@@ -179,7 +188,7 @@ def _plan(comm, path, options):
             say(f"sweep.run: {study.name}: {refine_text(study)}; on {ranks}", file=sys.stderr)
     else:
         n = study.n_cells
-        first = _deal(n, parts.done_cells(), options, size, options.backend_of(study))
+        first = _deal(n, parts.done_cells(), options, size, options.runs_on(study))
         if not options.quiet:
             say(f"sweep.run: {study.name}: {n} cells ({shape_text(study)}) on {ranks}, chunks "
                 f"of {first.chunks.chunk_size}", file=sys.stderr)
@@ -210,7 +219,7 @@ def _watch(comm, options):
 def _chunk_runner(study, options):
     """This rank's ``run_chunk`` for every round of ``study`` (its records kept between)."""
     from .cells import ChunkRunner
-    return ChunkRunner(budget=options.cell_budget, backend=options.backend_of(study))
+    return ChunkRunner(budget=options.cell_budget, backend=options.runs_on(study))
 
 
 class _Rounds:
@@ -258,7 +267,7 @@ class _Rounds:
             deal = self.first
         else:
             deal = _deal(n, () if parts is None else parts.done_cells(), options, size,
-                         options.backend_of(self.study))
+                         options.runs_on(self.study))
             if len(deal.done) and not options.quiet:
                 say(f"sweep.run: resuming round {index}: {len(deal.done)} of {n} cells "
                     f"already done in {parts.directory}", file=sys.stderr)
@@ -509,6 +518,7 @@ def run_study(study, *, chunk_size=None, seed=grid.DEFAULT_SEED, progress=False)
     why = _backend_problem(study, options)
     if why is not None:
         raise FileProblems([Problem("run.backend", "cuda", why)], study.source)
+    _say_gpu_declined(study, options, "sweep.run_study")
     comm = mpi.SerialComm()
     result = _compute(comm, study, options, _Rounds(comm, study, options, "sweep.run_study"))
     return _dataset(study, result, f"sweep.run_study({study.source or study.name!r})")

@@ -61,8 +61,18 @@ class RunOptions:
     argv: tuple[str, ...] = ()
 
     def backend_of(self, study):
-        """Where the cells of ``study`` run: this option, else the study's, else the CPU."""
+        """Where the cells of ``study`` are asked to run: this option, else the study's, else
+        the CPU."""
         return self.backend or study.backend or "cpu"
+
+    def gpu_declined(self, study):
+        """The GPU is asked for, but ``study`` has fewer than ``grid.MIN_GPU_CELLS`` cells."""
+        return self.backend_of(study) == "cuda" and study.n_cells < grid.MIN_GPU_CELLS
+
+    def runs_on(self, study):
+        """Where the cells of ``study`` run: :meth:`backend_of`, but on the CPU where the GPU
+        is declined (:meth:`gpu_declined`)."""
+        return "cpu" if self.gpu_declined(study) else self.backend_of(study)
 
     def command_line(self, size=None):
         """The command line, with ``(<size> ranks)`` after it when ``size`` is given."""

@@ -1,6 +1,6 @@
-"""The chunk kernel of ``kernels.cuda_batch`` without a GPU: on numba-cuda's simulator, and
-compiled for the device (PTX) where the CUDA toolkit's compilers are installed.  Skipped
-without numba-cuda (``make test-cudasim`` installs it; docs/gpu.md)."""
+"""The chunk kernel of ``kernels.cuda_batch`` without a GPU, on numba-cuda's simulator
+(compiled for the device: tests/kernels/test_ptx.py).  Skipped without numba-cuda
+(``make test-cudasim`` installs it; docs/gpu.md)."""
 import os
 import subprocess
 import sys
@@ -27,27 +27,3 @@ def test_simulator_runs_every_mode_as_the_cpu():
     assert ran.returncode == 0, ran.stdout + ran.stderr
     assert "DIFFERENT" not in ran.stdout and "modes not reached: none" in ran.stdout
     assert "record ensemble in 3 chunks: same" in ran.stdout and ": once" in ran.stdout
-
-
-@pytest.mark.slow
-def test_device_code_compiles_to_ptx(monkeypatch):
-    """numba-cuda types, lowers and compiles the whole kernel for sm_90 (about 40 s)."""
-    from kernels import codes
-    from kernels.cuda_batch import _run_rows      # first: it shims numpy for numba-cuda
-    from kernels.state import WORK_DTYPE
-    from numba import cuda, float64, from_dtype, int64
-    import numba.cuda.dispatcher
-
-    class Device:                       # device functions ask the current GPU for its
-        compute_capability = (9, 0)     # compute capability, even to compile only
-    monkeypatch.setattr(numba.cuda.dispatcher, "get_current_device", Device)
-    try:
-        cuda.compile_ptx(lambda a: None, (float64[::1],), cc=(9, 0))
-    except Exception as err:            # no NVVM/NVRTC: nothing to compile with
-        pytest.skip(f"the CUDA compilers are not usable: {err}")
-    row, res, work = (from_dtype(d) for d in (codes.SCENE_DTYPE, codes.RESULT_DTYPE,
-                                              WORK_DTYPE))
-    ptx, _ = cuda.compile_ptx(_run_rows.py_func, (row[::1], float64[::1], res[::1],
-                                                  work[::1], float64[:, ::1], float64[:, ::1],
-                                                  int64[::1]), cc=(9, 0))
-    assert ".entry" in ptx and "run_scene" in ptx

@@ -98,4 +98,4 @@ def test_default_chunk_size():
     # on the GPU a rank's share in one launch, at most CUDA_CHUNK
     assert grid.default_chunk_size(4000, 1, "cuda") == 4000
     assert grid.default_chunk_size(4001, 2, "cuda") == 2001
-    assert grid.default_chunk_size(10**6, 2, "cuda") == grid.CUDA_CHUNK == 1 << 15
+    assert grid.default_chunk_size(10**7, 2, "cuda") == grid.CUDA_CHUNK == 1 << 20
