@@ -94,7 +94,8 @@ def kernel_cpu_per_cell(study_path):
         t0 = time.process_time()
         results[k] = api.run_cells(rows[k:k + 1], rec)[0]
         cpu[k] = time.process_time() - t0
-    return cpu, build, cells.summarize(results, bodies, motions)["outcome"]
+    return cpu, build, cells.summarize(results, bodies, motions,
+                                       rows["restraint"]["kind"])["outcome"]
 
 
 def _same(path_a, path_b):

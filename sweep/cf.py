@@ -39,6 +39,7 @@ STATUS_FLAGS = (tuple(range(len(codes.STATUS_NAMES))), codes.STATUS_NAMES)
 OVERTURNED_FLAGS = ((-1, 0, 1), ("failed", "standing", "overturned"))
 DIRECTION_FLAGS = ((-1, 0, 1), ("negative_theta", "none", "positive_theta"))
 SLID_FLAGS = ((-1, 0, 1), ("failed", "no_slip", "slid"))
+RESTRAINT_FLAGS = ((-1, 0, 1), ("none_or_failed", "held", "broke"))
 SLID_THRESHOLD = 0.01  # m: a body whose base moved further than this along the floor slid
 SLIP_COMMENT = ("how far the footprint of the base (where the middle of the base would be, set "
                 "down flat about the corner it stands on) moved from where the body first "
@@ -116,9 +117,13 @@ VARIABLES = {
                         comment="atan(b2/y_G), b2 = B/2 - x_G; the body tips to the right "
                                 "(overturn_direction -1) about this corner (docs/bodies.md)"),
     "isolator_max_displacement": Variable(
-        "float64", "m", "largest displacement of the friction pendulum under the platform",
-        comment="relative to the motion under it (docs/isolation.md); NaN without a friction "
-                "pendulum"),
+        "float64", "m", "largest displacement of the isolator under the platform",
+        comment="relative to the motion under it (docs/isolation.md); NaN without an "
+                "isolator"),
+    "restraint_broken": Variable("int8", "1", "restraint broken", RESTRAINT_FLAGS,
+                                 comment="broke: the anchor's ties gave way, the body was "
+                                         "then free (docs/anchors.md); none_or_failed: the "
+                                         "scene has no restraint, or the simulation failed"),
 }
 MODE = ("mode", codes.MODE_NAMES, {"units": "1", "long_name": "motion type"})
 

@@ -32,7 +32,8 @@ def _parser():
                             "each record was read (provenance), then the per-impact arrays, "
                             "each on one line")
     shown.add_argument("--summary", action="store_true",
-                       help="print only what the body did and the end status (two lines), "
+                       help="print only what the body did and the end status (two lines; a "
+                            "third says whether an anchor held or broke, and when), "
                             "and how each record was read (a line each)")
     said.add_argument("--plot", metavar="PNG",
                       help="what the body did as title over its positions, theta/alpha, the "

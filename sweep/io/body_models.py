@@ -1,8 +1,9 @@
-"""The pydantic models of a scene's body and contact: its shape, G, inertia and friction.
+"""The pydantic models of a scene's body, contact and restraint: shape, mass, friction, anchor.
 
 A body is given as a rectangle (``B``, ``H``, ``G``, ``i_g``) or in the precarious-rock form
-(``alpha_1, alpha_2`` with ``R_1, R_2`` or the height ``h`` of G), docs/bodies.md; the contact
-as its friction and restitution coefficients and its landing law (docs/physics.md §2).
+(``alpha_1, alpha_2`` with ``R_1, R_2`` or the height ``h`` of G), docs/bodies.md, with its
+``mass`` where a restraint needs it; the contact as its friction and restitution coefficients
+and its landing law (docs/physics.md §2); the restraint as an anchor's ties (docs/anchors.md).
 """
 import math
 from typing import Annotated, Literal, Optional
@@ -10,7 +11,7 @@ from typing import Annotated, Literal, Optional
 from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from kernels.api import DEFAULTS
-from kernels.codes import LANDING_NAMES
+from kernels.codes import LANDING_NAMES, RESTRAINT_NAMES
 
 from .fields import Angle, Coefficient, Length, Real, StrictModel, quantity
 from .problems import MISSING, FieldError
@@ -44,6 +45,8 @@ class Body(StrictModel):
     R_2: Optional[Length] = Field(None, description="distance from G to the right corner")
     h: Optional[Length] = Field(None, description="height of G above the base, with alpha_1 "
                                                   "and alpha_2 instead of R_1, R_2")
+    mass: Optional[quantity("mass", gt=0)] = Field(
+        None, description="mass of the body; required by a restraint")
 
     @field_validator("i_g")
     @classmethod
@@ -142,3 +145,11 @@ class Contact(StrictModel):
         "jump: face_friction (one contact at the middle of the base: its friction turns the "
         "body; the paper's Fig. 5), flat (two-contact impulse), corner (the leading corner "
         "first); docs/landing.md")
+
+
+class Restraint(StrictModel):
+    """An anchor: a tension-only vertical tie at each corner of the base, rigid until it must
+    pull harder than its ``strength``, then broken for good (docs/anchors.md)."""
+
+    kind: Literal[RESTRAINT_NAMES[1:]] = Field(description="the kind of restraint")
+    strength: quantity("force", ge=0) = Field(description="the pull at which a tie breaks")

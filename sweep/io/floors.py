@@ -6,13 +6,17 @@ pulse sampled finely through the recursion, each computed
 once per ground and building at scale 1 (the building is linear), so the record's ``scale`` is
 the ground's scale or the sine's amplitude.  The floor starts with its ground and rings down
 after it (docs/floors.md).  A linear isolator is one mode of participation 1 over the motion
-under it; a friction pendulum (``sweep.groundmotion.isolator``) is not linear and is computed
+under it, its largest displacement that of the oscillator over the motion under it sampled
+(``groundmotion.oscillator``); a friction pendulum (``sweep.groundmotion.isolator``) is not linear and is computed
 at the motion's scale (docs/isolation.md).
 """
 import math
 
 from functools import lru_cache
 
+import numpy as np
+
+from ..groundmotion import oscillator
 from ..groundmotion.floor import (Mode, _Samples, floor_of_motion, floor_of_record,
                                   floor_of_sine, shear_beam_modes)
 from ..groundmotion.isolator import Pendulum, response
@@ -65,18 +69,32 @@ def _platform(under, dt, pendulum):
     return out
 
 
+@lru_cache(maxsize=256)
+def _linear_drift(under, dt, period, damping):
+    """Largest |u| [m] of a linear isolator (period [s], damping ratio) over the unit motion
+    ``under`` sampled every ``dt`` [s], from rest, with one period of still ground after it
+    (its free vibration passes its first peak within half a period)."""
+    still = np.zeros(math.ceil(period / dt) + 1)
+    u, _ = oscillator.response(-np.concatenate([under.samples, still]), dt,
+                               2.0 * math.pi / period, damping)
+    return float(np.max(np.abs(u)))
+
+
 def resolve_isolated(isolator, under, t_end):
     """Resolved SI dict of a platform on a checked ``isolator`` over the resolved motion
     ``under`` it: a record (kernels/api.py) with ``ground`` (``under``) and ``isolator``, a
-    dict with ``max_displacement`` [m] (the linear isolator's relative displacement is not
-    computed: None), ``capacity`` [m] (None: none given) and ``exceeded``."""
+    dict with ``max_displacement`` [m] (the largest displacement relative to ``under``),
+    ``capacity`` [m] (None: none given) and ``exceeded``."""
     if under["kind"] == "none":
         return under
-    if isolator.kind == "linear":
-        out = filtered((Mode(isolator.period.to_si(), isolator.damping, 1.0),), under, t_end)
-        return {**out, "ground": under, "isolator": {"max_displacement": None,
-                                                     "capacity": None, "exceeded": False}}
     sampled = filtered((), under, t_end)
+    if isolator.kind == "linear":
+        period = isolator.period.to_si()
+        out = filtered((Mode(period, isolator.damping, 1.0),), under, t_end)
+        drift = abs(sampled["scale"]) * _linear_drift(_Samples(sampled["samples"]),
+                                                      sampled["dt"], period, isolator.damping)
+        return {**out, "ground": under, "isolator": {"max_displacement": drift,
+                                                     "capacity": None, "exceeded": False}}
     pendulum = Pendulum(isolator.radius.to_si(), float(isolator.mu))
     motion = _platform(_Samples(sampled["scale"] * sampled["samples"]), sampled["dt"], pendulum)
     capacity = (None if isolator.displacement_capacity is None

@@ -55,7 +55,8 @@ SCENE = (Section("", scene.Scene, {}),
          Section(f"{_GROUND} (kind: isolated).isolator (kind: friction_pendulum)",
                  scene.FrictionPendulum, {}),
          Section("initial", scene.Initial, DEFAULTS["initial"]),
-         Section("solver", scene.Solver, DEFAULTS["solver"]))
+         Section("solver", scene.Solver, DEFAULTS["solver"]),
+         Section("restraint", scene.Restraint, {}))
 STUDY = (Section("", study.StudyFile, {"output": f"{study.OUTPUT_DIR}/<name>.nc"}),
          Section("grid.<axis> (a mapping)", study.RangeSpec, {"spacing": study.SPACINGS[0]}),
          Section("refine", study.RefineSpec, {}),

@@ -3,7 +3,7 @@
 The excitation is any kind of ground motion (docs/design.md section 4); the validators do every
 check of a scene, the cross-field ones included.  Fields left out take
 ``kernels.api.DEFAULTS``; ``sweep.io.scene_schema`` loads a file into them and resolves them
-into SI.  The body and the contact are in ``sweep.io.body_models``.
+into SI.  The body, the contact and the restraint are in ``sweep.io.body_models``.
 """
 from pathlib import Path
 from typing import Annotated, Literal, Optional, Union
@@ -14,7 +14,7 @@ from pydantic import (BeforeValidator, Discriminator, Field, PlainValidator, Tag
 from kernels.api import DEFAULTS
 
 from . import records, units
-from .body_models import Body, Contact
+from .body_models import Body, Contact, Restraint
 from .fields import (Acceleration, Angle, Count, Duration, Frequency, Instant, QuantityOf, Real,
                      Seed, StrictModel, _plain_number, quantity)
 from .problems import MISSING, FieldError
@@ -484,3 +484,21 @@ class Scene(StrictModel):
     excitation: Excitation = Field(default_factory=Excitation, description="the floor's motion")
     initial: Initial = Field(default_factory=Initial, description="the state at t = 0")
     solver: Solver = Field(default_factory=Solver, description="integrator, budgets, history")
+    restraint: Optional[Restraint] = Field(None, description="what holds the body down "
+                                                             "(default none: free-standing)")
+
+    @model_validator(mode="after")
+    def _anchored_at_rest(self):
+        """A restraint needs the body's ``mass`` (its strength is a force) and a body that
+        starts flat at rest (docs/anchors.md)."""
+        if self.restraint is None:
+            return self
+        errors = [FieldError(("body", "mass"), MISSING, "is required by the restraint: its "
+                                                        "strength is a force")
+                  ] if self.body.mass is None else []
+        errors += [FieldError(("initial", key), str(value), "must be 0: an anchored body "
+                                                            "starts flat at rest")
+                   for key, value in self.initial if value is not None and value.value != 0]
+        if errors:
+            raise FieldError.every(errors)
+        return self

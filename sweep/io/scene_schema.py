@@ -20,8 +20,8 @@ from .problems import MISSING, FileProblems, Problem, dotted_path, warn
 from .scene_models import (KINDS, _FILE_OPTIONS, Body, Building, BuildingMode, Contact,
                            Excitation, FloorMotion, FrictionPendulum, Initial,
                            IsolatedMotion, LinearIsolator, NoMotion, PulseMotion,
-                           RecordMotion, Scene, SineMotion, Solver, SpectralTarget,
-                           SweepMotion, SyntheticMotion, _read_file)
+                           RecordMotion, Restraint, Scene, SineMotion, Solver,
+                           SpectralTarget, SweepMotion, SyntheticMotion, _read_file)
 from .units import Quantity
 
 T_TAIL = 5.0  # s simulated after the last excitation ends, for the body to settle or fall
@@ -33,7 +33,7 @@ SAMPLES_PER_PERIOD = 20  # history samples per sine or sweep period: its peaks w
 
 _MODELS = (Scene, Body, Contact, Excitation, NoMotion, SineMotion, SweepMotion, RecordMotion,
            SpectralTarget, PulseMotion, SyntheticMotion, FloorMotion, Building, BuildingMode,
-           IsolatedMotion, LinearIsolator, FrictionPendulum, Initial, Solver)
+           IsolatedMotion, LinearIsolator, FrictionPendulum, Initial, Solver, Restraint)
 _FIELD_NAMES = sorted({name for model in _MODELS for name in model.model_fields})
 
 
@@ -219,9 +219,11 @@ def resolve_scene(scene):
     Returns
     -------
     dict
-        ``body``, ``contact`` (all six coefficients), ``excitation`` (``horizontal``,
-        ``vertical``), ``initial`` and ``solver`` (all keys), in m, s, rad, Hz.  Sine amplitudes
-        are acceleration amplitudes; a sweep's amplitude is in the SI unit of its ``hold``;
+        ``body`` (its ``mass`` [kg] when given), ``contact`` (all six coefficients),
+        ``excitation`` (``horizontal``, ``vertical``), ``initial``, ``solver`` (all keys)
+        and, when the scene has one, ``restraint`` (``kind``, ``strength`` [N]), in m, s,
+        rad, Hz, kg, N.  Sine amplitudes are acceleration amplitudes; a sweep's amplitude is
+        in the SI unit of its ``hold``;
         a record (or a synthetic motion, resolved into one) has ``samples`` [m/s^2,
         read-only], ``dt``, ``scale`` (from ``pga`` or ``pgv`` if given, or the horizontal's
         for a vertical ``scale_with: horizontal``) and ``source``, the
@@ -249,6 +251,8 @@ def resolve_and_pack(scene, records):
     b = scene.body
     body = {"B": b.B.to_si(), "H": b.H.to_si(), "i_g": _si(b.i_g, DEFAULTS["body"]["i_g"]),
             "G": None if b.G is None else [x.to_si() for x in b.G]}
+    if b.mass is not None:
+        body["mass"] = b.mass.to_si()
 
     contact = dict(DEFAULTS["contact"])
     for key in contact:
@@ -282,6 +286,9 @@ def resolve_and_pack(scene, records):
         solver["dt_out"] = _history_dt(excitation.values(), solver["t_end"])
     resolved = {"body": body, "contact": contact, "excitation": excitation,
                 "initial": initial, "solver": solver}
+    if scene.restraint is not None:
+        resolved["restraint"] = {"kind": scene.restraint.kind,
+                                 "strength": scene.restraint.strength.to_si()}
     return resolved, _row(resolved, scene, records)
 
 

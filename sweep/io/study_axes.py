@@ -20,14 +20,14 @@ from .files import find_files, named
 from .plausibility import glob_notes
 from .problems import FieldError, closest, join_path
 from .scene_schema import (Body, Contact, Initial, NoMotion, PulseMotion, RecordMotion,
-                           SineMotion, Solver, SweepMotion, SyntheticMotion)
+                           Restraint, SineMotion, Solver, SweepMotion, SyntheticMotion)
 
 MAX_AXIS_VALUES = 1_000_000  # values of one axis: far finer than any figure, a bounded list
 AXIS_LIST = f"must be a non-empty list of at most {MAX_AXIS_VALUES} values"
 # CF units of coordinates, by dimension (udunits spelling)
 CF_UNITS = {"acceleration": "m s-2", "velocity": "m s-1", "length": "m", "angle": "rad",
             "angular_velocity": "rad s-1", "frequency": "Hz", "time": "s",
-            "dimensionless": "1", "name": "1"}
+            "mass": "kg", "force": "N", "dimensionless": "1", "name": "1"}
 # Units whose numbers the coordinates keep when a whole axis is written in them (CF spelling):
 # a legend reads 180 deg, not 3.14159
 AS_WRITTEN = {"deg": "degree", "deg/s": "degree s-1"}
@@ -39,7 +39,8 @@ SYNONYMS = {"height": "H", "breadth": "B", "width": "B", "size_factor": "size",
             "b/h": "b_over_h", "aspect_ratio": "b_over_h", "slenderness": "b_over_h",
             "friction": "mu", "records": "record", "seeds": "seed", "freq": "frequency",
             "scale_factor": "scale"}
-_SECTIONS = {"body": Body, "contact": Contact, "initial": Initial, "solver": Solver}
+_SECTIONS = {"body": Body, "contact": Contact, "initial": Initial, "solver": Solver,
+             "restraint": Restraint}
 MOTIONS = {"none": NoMotion, "sine": SineMotion, "sweep": SweepMotion, "record": RecordMotion,
            "pulse": PulseMotion, "synthetic": SyntheticMotion}
 

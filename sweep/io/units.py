@@ -5,7 +5,9 @@ against the field's dimension; it is turned into SI later by :meth:`Quantity.to_
 the body for the paper's body-relative units: ``west`` (x (B/H) g, Eq. (1)), ``v_H`` (x the
 single-shock overturning velocity, Eq. (9)) and ``alpha`` (x the slenderness angle atan(B/H)).
 Imperial lengths, velocities and accelerations take the exact factors of the international
-yard (1959): 1 in = 0.0254 m, 1 ft = 0.3048 m, 1 yd = 0.9144 m, 1 mi = 1609.344 m.
+yard (1959): 1 in = 0.0254 m, 1 ft = 0.3048 m, 1 yd = 0.9144 m, 1 mi = 1609.344 m; the pound
+is the international avoirdupois pound (1959), 0.45359237 kg, its force 1 lbf = 0.45359237 kg
+x g = 4.4482216152605 N, and 1 kgf = 1 kg x g = 9.80665 N (g the standard gravity).
 Unit names are case-insensitive; ``sec`` may stand for ``s``, ``inch``, ``foot`` and ``feet``
 for ``in`` and ``ft``.
 """
@@ -17,13 +19,14 @@ from dataclasses import dataclass
 from .. import bodies
 
 DIMENSIONS = ("acceleration", "velocity", "length", "angle", "angular_velocity", "frequency",
-              "time", "dimensionless")
+              "time", "mass", "force", "dimensionless")
 
 # The international inch, foot, yard and mile (1959), exact in metres
 INCH = 0.0254
 FOOT = 0.3048
 YARD = 0.9144
 MILE = 1609.344
+POUND = 0.45359237        # kg, the international avoirdupois pound (1959)
 
 # unit -> (dimension, factor to SI); keys are lower case
 _FIXED = {
@@ -42,15 +45,18 @@ _FIXED = {
     "rad/s": ("angular_velocity", 1.0), "deg/s": ("angular_velocity", math.pi / 180.0),
     "hz": ("frequency", 1.0),
     "s": ("time", 1.0), "ms": ("time", 0.001), "min": ("time", 60.0),
+    "kg": ("mass", 1.0), "t": ("mass", 1000.0), "lb": ("mass", POUND),
+    "n": ("force", 1.0), "kn": ("force", 1000.0), "lbf": ("force", POUND * bodies.G),
+    "kgf": ("force", bodies.G),
 }
 # body-relative unit -> dimension; the factor depends on the body (see Quantity.to_si)
 _RELATIVE = {"west": "acceleration", "v_h": "velocity", "alpha": "angle"}
-_SPELLING = {"west": "west", "v_h": "v_H", "alpha": "alpha", "hz": "Hz"}
+_SPELLING = {"west": "west", "v_h": "v_H", "alpha": "alpha", "hz": "Hz", "n": "N", "kn": "kN"}
 # other spellings of a length, alone or before a ``/`` (``feet/s`` -> ``ft/s``)
 _ALIASES = {"inch": "in", "inches": "in", "foot": "ft", "feet": "ft"}
 _EXAMPLES = {"acceleration": "341.7 gal", "velocity": "100 cm/s", "length": "10 cm",
              "angle": "30 deg", "angular_velocity": "10 deg/s", "frequency": "2 Hz",
-             "time": "500 ms", "dimensionless": "0.5"}
+             "time": "500 ms", "mass": "120 kg", "force": "0.8 kN", "dimensionless": "0.5"}
 
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 # a quantity written as a string: a number, then its unit if any (also a JSON Schema pattern)

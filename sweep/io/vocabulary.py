@@ -68,9 +68,9 @@ FIELD_DIMENSIONS = {
     "max_step": "time", "t_end": "time", "zeno_dt": "time", "dt_out": "time",
     "period": "time", "damping": "dimensionless", "height_ratio": "dimensionless",
     "seed": "dimensionless", "kind": "name", "name": "name", "path": "name", "units": "name", "method": "name",
-    "law": "name", "hold": "name", "shape": "name",
+    "law": "name", "hold": "name", "shape": "name", "mass": "mass", "strength": "force",
 }
-SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver")
+SCENE_SECTIONS = ("body", "contact", "excitation", "initial", "solver", "restraint")
 
 
 def record_source(value):

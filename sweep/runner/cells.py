@@ -109,9 +109,10 @@ def _body_scales(bodies):
             for x in (west, v_H, p, alpha_1, alpha_2)]
 
 
-def summarize(results, bodies, motions):
+def summarize(results, bodies, motions, restraints):
     """Per-cell arrays of ``cf.VARIABLES`` from kernel results (n records of
-    ``codes.RESULT_DTYPE``), the cells' bodies and motions (``build_rows``)."""
+    ``codes.RESULT_DTYPE``), the cells' bodies and motions (``build_rows``) and the kinds of
+    their restraints (a ``codes.RESTRAINT_*`` code each: the rows' ``restraint.kind``)."""
     status = results["status"].astype(np.int8)
     failed = np.isin(status, codes.FAILED_STATUSES)
     overturned = status == codes.OVERTURNED
@@ -143,6 +144,8 @@ def summarize(results, bodies, motions):
         "pga": pga, "pgv": pgv, "pgd": pgd, "significant_duration": d5_95,
         "pga_norm": pga / west, "pgv_norm": pgv * p / west,
         "alpha_1": alpha_1, "alpha_2": alpha_2, "isolator_max_displacement": isolator,
+        "restraint_broken": np.where(failed | (restraints == codes.RESTRAINT_NONE), -1,
+                                     np.isfinite(results["t_broken"])),
     }
     return {name: np.ascontiguousarray(a, dtype=cf.VARIABLES[name].dtype)
             for name, a in out.items()}
@@ -188,7 +191,8 @@ class ChunkRunner:
             _warn(cells[k], f"its scene cannot be built: {problem}")
         for k in np.flatnonzero(results["status"] == codes.TIME_BUDGET):
             _warn(cells[k], f"stopped after the per-cell wall-time budget of {self.budget:g} s")
-        return {"cell": cells, **summarize(results, bodies, motions)}
+        return {"cell": cells, **summarize(results, bodies, motions,
+                                           rows["restraint"]["kind"])}
 
 
 def run_chunk(study, cells, *, budget=CELL_BUDGET, backend="cpu"):

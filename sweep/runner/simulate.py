@@ -31,7 +31,7 @@ PROVENANCE_KEY = "provenance"  # after the summary keys: how each record file wa
 
 Result = namedtuple("Result", SceneResult._fields + MOTION_KEYS
                     + ("B", "H", "alpha", "body", "overturn_towards", PROVENANCE_KEY, "on_floor",
-                       "isolator"))
+                       "isolator", "restraint"))
 Result.__doc__ = """The kernel's ``SceneResult``, the peaks of the horizontal motion applied:
 ``pga`` [m/s^2], ``pgv`` [m/s], ``pgd`` [m] (``sweep.groundmotion.applied``), the body:
 breadth ``B`` and height ``H`` [m], slenderness angle ``alpha`` = atan(B/H) [rad] (the
@@ -41,8 +41,10 @@ smaller side's with G off the middle), the ``body`` in both forms (``bodies.desc
 floor component that is a record (``records.floor_provenance``), and ``on_floor``: True when
 the horizontal motion is a building's floor (``kind: floor``; its peaks are the floor's),
 ``isolator``: on an isolated platform (``kind: isolated``; its peaks are the platform's), the
-isolator's ``max_displacement`` [m] (None for a linear one), ``capacity`` [m] and ``exceeded``
-(``sweep.io.floors.resolve_isolated``), else None."""
+isolator's ``max_displacement`` [m], ``capacity`` [m] and ``exceeded``
+(``sweep.io.floors.resolve_isolated``), else None; ``restraint``: for a restrained body
+(docs/anchors.md), its ``kind``, ``strength`` [N], ``broken`` (whether it gave way) and
+``t_broken`` [s] (None when it held), else None."""
 
 
 def simulate(scene, history=False, max_log=MAX_LOG):
@@ -76,7 +78,8 @@ def simulate(scene, history=False, max_log=MAX_LOG):
     result = Result(*ran, *motion[:3], B, H, alpha, describe(B, H, body["G"], body["i_g"]),
                     fall_side(ran.overturn_direction), floor_provenance(resolved["excitation"]),
                     checked.excitation.horizontal.kind == "floor",
-                    resolved["excitation"]["horizontal"].get("isolator"))
+                    resolved["excitation"]["horizontal"].get("isolator"),
+                    _restraint(resolved.get("restraint"), ran))
     if history:
         from ..cf import history_dataset
         source = None if isinstance(scene, dict) else str(scene)
@@ -84,6 +87,14 @@ def simulate(scene, history=False, max_log=MAX_LOG):
                                                          result))
         result.history.attrs["body_form"] = checked.body.form  # how the plots draw it
     return result
+
+
+def _restraint(restraint, ran):
+    """The ``restraint`` of a :data:`Result`: the scene's, with what became of it in ``ran``
+    (the kernel's ``SceneResult``); None without one."""
+    if restraint is None:
+        return None
+    return {**restraint, "broken": ran.restraint_broken, "t_broken": ran.t_broken}
 
 
 def _check_history(resolved, source):
@@ -100,12 +111,23 @@ def _check_history(resolved, source):
 def summary(result):
     """Two lines: what the body did (``verdict.verdict``), then the end status with its
     message, the peaks of the horizontal motion (``floor PGA`` on a building's floor, ``PGA``
-    on the ground, ``platform PGA`` on an isolator) and the CPU time."""
+    on the ground, ``platform PGA`` on an isolator) and the CPU time; for a restrained body a
+    third line, :func:`_restraint_line`."""
     where = "platform " if result.isolator else "floor " if result.on_floor else ""
     floor = (f"{where}PGA {result.pga / G:.3g} g, PGV {result.pgv * 100:.3g} cm/s"
              if result.pga > 0 else "horizontal floor still")
     return (f"{verdict(result._asdict())}\n{result.status}: {result.message}; {floor}; "
-            f"cpu {result.cpu_s * 1e3:.2f} ms")
+            f"cpu {result.cpu_s * 1e3:.2f} ms" + _restraint_line(result.restraint))
+
+
+def _restraint_line(restraint):
+    """A third line for a restrained body: whether its anchor held or broke, and when; else
+    ''."""
+    if restraint is None:
+        return ""
+    said = (f"broke at t = {restraint['t_broken']:.6g} s" if restraint["broken"]
+            else "held throughout")
+    return f"\n{restraint['kind']} of strength {restraint['strength']:g} N: {said}"
 
 
 def to_json_dict(result):
@@ -114,7 +136,8 @@ def to_json_dict(result):
     the impact count (``impact_times`` holds the first ``impact_count`` impacts only when
     ``impact_log_truncated``), the impacts whose restitution was clamped, the peaks of the
     horizontal motion applied, how each record was read (``provenance``: reader, unit and
-    where it came from, dt, samples, header), whether each impact slipped, and on an isolated
-    platform the ``isolator``."""
+    where it came from, dt, samples, header), whether each impact slipped, on an isolated
+    platform the ``isolator`` and for a restrained body the ``restraint``."""
     out = {key: getattr(result, key) for key in SUMMARY_KEYS + (PROVENANCE_KEY,) + IMPACT_KEYS}
-    return out if result.isolator is None else {**out, "isolator": result.isolator}
+    extras = {key: getattr(result, key) for key in ("isolator", "restraint")}
+    return {**out, **{key: value for key, value in extras.items() if value is not None}}

@@ -106,7 +106,7 @@ def test_json_schemas_accept_every_bundled_file(written):
 
 
 @pytest.mark.parametrize("kind, raw, where", [
-    ("scene", {"body": {"B": 0.1, "H": 0.3, "mass": 2}}, "mass"),
+    ("scene", {"body": {"B": 0.1, "H": 0.3, "weight": 2}}, "weight"),
     ("scene", {"body": {"B": "ten cm", "H": 0.3}}, "ten cm"),
     ("scene", {"body": {"B": -0.1, "H": 0.3}}, "-0.1"),
     ("scene", {"body": {"B": 0.1, "H": 0.3}, "excitation": {"horizontal": {"kind": "sin"}}},

@@ -28,7 +28,7 @@ solver: {method: adaptive, rtol: 1.0e-8, t_end: 10.0}
 """
 
 BAD = """\
-body: {B: 10 cm, H: -0.3, mass: 2}
+body: {B: 10 cm, H: -0.3, weight: 2}
 contact: {mu: 0.4, e_x: -1.5, e_y: 0.2, e_y: 0.3}
 excitation:
   horizontal: {kind: sine, amplitude: 1.5 wset, frequency: 4 s, amplitdue: 3}
@@ -71,7 +71,7 @@ def test_every_problem_at_once(tmp_path):
     assert got == {
         "contact.e_y": "e_y",                              # duplicate key
         "body.H": -0.3,
-        "body.mass": 2,
+        "body.weight": 2,
         "contact.e_x": -1.5,
         "excitation.horizontal.amplitude": "1.5 wset",
         "excitation.horizontal.frequency": "4 s",
