@@ -73,8 +73,8 @@ def _parser():
     parser.add_argument("-o", "--output", help="figure file (.png, .pdf, .svg)")
     parser.add_argument("--map", help="risk map figure over the grid of bodies")
     parser.add_argument("--options", metavar="FIG",
-                        help="options figure of a grid: P with its interval per body, "
-                             "against the target")
+                        help="options figure of a grid or of named options: P with its "
+                             "interval per body, against the target")
     parser.add_argument("--csv", help="table: one row per body")
     parser.add_argument("--dataset", help="netCDF dataset of the results")
     parser.add_argument("--nrml", help="OpenQuake fragility model (NRML 0.5) of the fit, or "
@@ -291,7 +291,9 @@ def print_report(outcome):
 
     from .probability.risk_report import asymmetric
 
-    curve = outcome.curve
+    from .probability.isolator_demand import said
+
+    curve, demands = outcome.curve, outcome.demands()
     factor, unit = display_scale(curve.units)
     print(f"hazard: {curve.source}")
     if outcome.placement and outcome.placement != "the ground under the body":
@@ -321,6 +323,8 @@ def print_report(outcome):
             continue
         for line in _risk_lines(r, outcome.target):
             print(f"  {line}")
+        if demands is not None and demands[index] is not None:
+            print(f"  isolator displacement: {said(demands[index])}")
         print(f"  {curve.im} segment [{unit}]     share of the {'bound' if r.bound else 'rate'}")
         for lower, upper, share in zip(r.lower, r.upper, r.shares):
             if share >= 0.01:
@@ -367,10 +371,13 @@ def _options_lines(outcome):
     heads += [f"P in {outcome.years:g} yr", f"{100 * outcome.confidence:g} % interval"]
     if outcome.target is not None:
         heads += ["meets (estimate)", "meets (upper bound)"]
+    demands = outcome.demands()
+    if demands is not None:
+        heads += [f"isolator d* [m] at {_pct(outcome.target)}"]
     rows = []
     for index in np.ndindex(*outcome.shape):
         r = outcome.risks[index]
-        row = [f"{v:.4g}" for v in outcome.option(index).values()]
+        row = [v if isinstance(v, str) else f"{v:.4g}" for v in outcome.option(index).values()]
         if r is None:
             row += ["n/a", ""]
         elif r.bound is not None:
@@ -380,6 +387,10 @@ def _options_lines(outcome):
             row += [_pct(r.probability), f"[{_pct(lo)}, {_pct(hi)}]" if lo == lo else ""]
         if outcome.target is not None:
             row += list(_verdicts(r, outcome.target))
+        if demands is not None:
+            d = demands[index]
+            row.append("" if d is None else "n/a" if d.displacement is None
+                       else f"{d.displacement:.3g}")
         rows.append(row)
     widths = [max(len(c) for c in column) for column in zip(heads, *rows)]
     target = "" if outcome.target is None else f"; target {_pct(outcome.target)}"
@@ -453,7 +464,9 @@ def _csv_rows(outcome):
                      "probability_lower": (interval.get("probability") or [None])[0],
                      "probability_upper": (interval.get("probability") or [None, None])[1],
                      "return_period": record["return_period"],
-                     "bound": record.get("bound") or ""})
+                     "bound": record.get("bound") or "",
+                     **({"isolator_demand": (record.get("isolator_demand") or {}).get(
+                         "displacement")} if outcome.displacements is not None else {})})
     return rows
 
 

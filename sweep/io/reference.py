@@ -376,7 +376,14 @@ def risk_json_schema():
     schema.setdefault("$defs", {})["RangeSpec"] = _described_units(_bounded(
         study.RangeSpec.model_json_schema()))
     properties = schema["properties"]
-    properties["scene"] = {"anyOf": [{"$ref": JSON_SCHEMAS["scene"]}, {"type": "null"}],
+    sections = {key: {"$ref": f"{JSON_SCHEMAS['scene']}#/properties/{key}"}
+                for key in scene.Scene.model_fields if key != "excitation"}
+    sections["excitation"] = {  # a floor's or an isolator's ground is the stripes'
+        "type": ["object", "string", "null"],
+        "description": "horizontal: a building's floor (kind floor) or an isolated platform "
+                       "(kind isolated) without the ground motion, which the stripes give"}
+    properties["scene"] = {"anyOf": [{"type": "object", "additionalProperties": False,
+                                      "properties": sections}, {"type": "null"}],
                            "description": properties["scene"]["description"]}
     axis = {"anyOf": [{"type": "array", "minItems": 1, "items": study.AXIS_VALUE},
                       {"$ref": "#/$defs/RangeSpec"}]}

@@ -18,6 +18,7 @@ the period and the target (docs/risk.md)::
     years: 50
     target: 0.02
     grid: {H: [40 cm, 80 cm], b_over_h: [0.2, 0.3]}     # optional: a risk map
+    # options: {as it stands: {}, ground floor: {excitation.horizontal: none}}   # or these
 
 One pydantic model (:class:`RiskFile`), loaded by ``sweep.io.loader.load_file`` as scene,
 study and bodies files are, checks it: its fields, then in one validator the choice of its
@@ -130,6 +131,10 @@ class RiskFile(StrictModel):
         None, description="a risk map: axes of a study's grid that set the body, its contact "
                           "or its building (B, H, b_over_h, mu, body.B, contact.mu, "
                           "excitation.horizontal.building.period), each a list or a range")
+    options: Optional[dict[StrictStr, dict[StrictStr, Any]]] = Field(
+        None, description="named options side by side: each a mapping of dotted scene paths "
+                          "(body.B, restraint, excitation.horizontal) to the values that "
+                          "replace the scene's; every option under the same stripes")
     confidence: Annotated[Real, Field(gt=0, lt=1)] = Field(
         0.95, description="of the intervals")
     replicates: Annotated[StrictInt, Field(ge=0, le=100_000)] = Field(
@@ -179,10 +184,12 @@ def _section_problems(raw):
     errors = _scene_problems(raw.get("scene") if isinstance(raw, dict) else None)
     errors += _grid_problems(raw.get("grid") if isinstance(raw, dict) else None,
                              _section(raw, "scene"))
-    if _kind(_section(_section(raw, "scene"), "excitation").get("horizontal")) == "floor" and \
-            _mixed_records(stripes.get("records")):
-        errors.append(("stripes.records", stripes["records"], "under a building's floor, give "
-                       "bundled records or files, not both (the ground takes a name or a path)"))
+    errors += _options_problems(raw)
+    if _motion_axes(_section(raw, "scene")) and _mixed_records(stripes.get("records")):
+        under = "a building's floor" if _motion_axes(_section(raw, "scene")) == (FLOOR_AXES,) \
+            else "an isolator"
+        errors.append(("stripes.records", stripes["records"], f"under {under}, give bundled "
+                       "records or files, not both (the ground takes a name or a path)"))
     if not given["stripes"] and not given["fragility"]:
         errors.append(("stripes", MISSING, "required (or a known fragility)"))
     if given["stripes"] and given["fragility"]:
@@ -212,11 +219,13 @@ def _mixed_records(records):
                                               for r in records}) > 1
 
 
-def _scene_problems(scene):
+def _scene_problems(scene, prefix="scene"):
     """``(path, value, message)`` of a risk file's raw ``scene``, checked as a scene file is
-    (``scene.body.B``), with stripes or a known fragility.  The stripes give its motion: the
-    horizontal one may only be a building's floor over it (``kind: floor`` without a
-    ``ground``), the vertical one none; another motion is refused, not replaced."""
+    (``scene.body.B``; ``prefix`` for an option's), with stripes or a known fragility.  The
+    stripes give its motion: the horizontal one may only be a building's floor over it
+    (``kind: floor`` without a ``ground``) or an isolated platform over it or over such a
+    floor (``kind: isolated`` without ``under``, or with a floor's), the vertical one none;
+    another motion is refused, not replaced."""
     if not isinstance(scene, dict):
         return []  # none given, or not a mapping: the field's problem
     errors, checked = [], scene
@@ -225,16 +234,17 @@ def _scene_problems(scene):
         kept = dict(excitation)
         vertical, horizontal = excitation.get("vertical"), excitation.get("horizontal")
         if _kind(vertical) in KINDS and _kind(vertical) != "none":
-            errors.append(("scene.excitation.vertical.kind", _kind(vertical),
+            errors.append((f"{prefix}.excitation.vertical.kind", _kind(vertical),
                            f"not supported in a risk file: {STRIPES_GIVE}, horizontal only"))
             kept.pop("vertical")
-        if _kind(horizontal) == "floor":
-            if "ground" in horizontal:
-                errors.append(("scene.excitation.horizontal.ground", horizontal["ground"],
-                               f"leave it out: {STRIPES_GIVE} under the building"))
-            kept["horizontal"] = {**horizontal, "ground": "none"}
+        path = f"{prefix}.excitation.horizontal"
+        if _kind(horizontal) == "isolated":
+            kept["horizontal"] = {**horizontal, "under": _open_ground(
+                horizontal.get("under"), f"{path}.under", errors)}
+        elif _kind(horizontal) == "floor":
+            kept["horizontal"] = _open_ground(horizontal, path, errors)
         elif _kind(horizontal) in KINDS and _kind(horizontal) != "none":
-            errors.append(("scene.excitation.horizontal.kind", _kind(horizontal),
+            errors.append((f"{path}.kind", _kind(horizontal),
                            f"not supported in a risk file: {STRIPES_GIVE} (a building's "
                            "floor over it: kind floor)"))
             kept.pop("horizontal")
@@ -242,26 +252,102 @@ def _scene_problems(scene):
     try:
         load_scene(checked)
     except FileProblems as problems:
-        errors += [tuple(p) for p in problems.with_prefix("scene").problems]
+        errors += [tuple(p) for p in problems.with_prefix(prefix).problems]
     return errors
+
+
+def _open_ground(motion, path, errors):
+    """The raw ``motion`` at ``path`` that the stripes' motion goes in (a floor: its
+    ``ground``; else, under an isolator, the motion itself), that place left empty for
+    checking; a motion written there is appended to ``errors`` (it would be replaced)."""
+    if _kind(motion) == "floor":
+        if "ground" in motion:
+            errors.append((f"{path}.ground", motion["ground"],
+                           f"leave it out: {STRIPES_GIVE} under the building"))
+        return {**motion, "ground": "none"}
+    if _kind(motion) != "none":
+        errors.append((path, motion, f"leave it out (or a building's floor: kind floor): "
+                                     f"{STRIPES_GIVE} under the isolator"))
+    return "none"
+
+
+def option_scene(scene, overrides):
+    """The raw ``scene`` with each dotted path of ``overrides`` replaced by its value (a
+    mapping made where the path goes through none): one option's scene."""
+    import copy
+
+    option = copy.deepcopy(scene if isinstance(scene, dict) else {})
+    for path, value in overrides.items():
+        *above, last = str(path).split(".")
+        place = option
+        for key in above:
+            if not isinstance(place.get(key), dict):
+                place[key] = {}
+            place = place[key]
+        place[last] = copy.deepcopy(value)
+    return option
+
+
+def _options_problems(raw):
+    """``(path, value, message)`` of a risk file's raw ``options``: given with stripes and
+    without a grid, each option's scene checked as the scene is (``options.<name>.<path>``,
+    its own problems only: the base scene's are said at ``scene``)."""
+    options = raw.get("options") if isinstance(raw, dict) else None
+    if options == {}:
+        return [("options", options, "give at least one option")]
+    if not isinstance(options, dict):
+        return []  # none given, or the field's problem
+    errors = []
+    if raw.get("grid") is not None:
+        errors.append(("options", "...", "give either a grid or options, not both (an "
+                                         "option may set any axis of a grid)"))
+    if raw.get("stripes") is None:
+        errors.append(("options", "...", "needs stripes: each option is simulated"))
+    scene = _section(raw, "scene")
+    base = {path.removeprefix("scene") for path, *_ in _scene_problems(scene)}
+    for name, overrides in options.items():
+        if not isinstance(overrides, dict):
+            continue  # the field's problem
+        prefix = join_path("options", name)
+        errors += [(path, value, message) for path, value, message in _scene_problems(
+            option_scene(scene, overrides), prefix) if path.removeprefix(prefix) not in base]
+    return errors
+
+
+def _motion_axes(scene):
+    """The prefixes of the axes that may set the raw ``scene``'s motion in a risk map: a
+    floor's building, an isolator's keys and its floor's building."""
+    horizontal = _section(scene, "excitation").get("horizontal")
+    if _kind(horizontal) == "floor":
+        return (FLOOR_AXES,)
+    if _kind(horizontal) == "isolated":
+        return ("excitation.horizontal.isolator.", "excitation.horizontal.under.building.")
+    return ()
 
 
 def _grid_problems(grid, scene):
     """``(path, value, message)`` of a risk map's raw ``grid``: each axis checked as a study's
     (``grid.<axis>``, against the raw ``scene``), and refused where it sets a motion, which the
-    stripes give (a floor's building excepted)."""
+    stripes give (a floor's building, an isolator and its floor's building excepted)."""
     if not isinstance(grid, dict):
         return []  # the field's problem
-    floor = _kind(_section(scene, "excitation").get("horizontal")) == "floor"
+    allowed = _motion_axes(scene)
     errors = []
     for name, spec in ((n, s) for n, s in grid.items() if isinstance(n, str)):
         path = join_path("grid", name)
         motion = [t for t in targets(name) if t.startswith("excitation")
-                  and not (floor and t.startswith(FLOOR_AXES))]
+                  and not t.startswith(allowed)]
+        if isinstance(spec, list) and any(isinstance(v, (list, dict)) for v in spec):
+            errors.append((path, spec, "an axis takes one number or name per value, not a "
+                           "vector: compare such values as named options (options: {G "
+                           f"low: {{{name}: [...]}}, G high: {{{name}: [...]}}}}; "
+                           "docs/options.md)"))
+            continue
         if motion:
             errors.append((path, name, f"sets {motion[0]}: {STRIPES_GIVE}; a risk map varies "
                            "the body, its contact, its solver or, on a floor, its building "
-                           f"({FLOOR_AXES}*)"))
+                           f"({FLOOR_AXES}*), on an isolator, the isolator "
+                           "(excitation.horizontal.isolator.*)"))
             continue
         try:
             grid_axis(name, spec, scene, Path("."), [])

@@ -299,6 +299,7 @@ def figure_options(outcome):
         if sure.any():
             ax.plot(p[sure], y[sure], "*", color="w", mec="k", ms=11, ls="none",
                     label="meets it with the upper bound too")
+    _annotate_demands(ax, outcome, indices, np.fmax(p, np.nan_to_num(upper)))
     ax.set_yticks(y, labels, fontsize=8)
     ax.invert_yaxis()
     ax.set(xlabel=f"P(overturn in {outcome.years:g} yr)", xlim=(0, None))
@@ -307,6 +308,22 @@ def figure_options(outcome):
     fit_suptitle(fig, [f"options: {outcome.name}" + (f", {fixed}" if fixed else "")
                        + _placed(outcome), outcome.curve.source])
     return fig
+
+
+def _annotate_demands(ax, outcome, indices, right):
+    """Beside each option's bar, its isolator's displacement demand at the target's
+    probability (``gid`` "isolator_demand")."""
+    demands = outcome.demands()
+    if demands is None:
+        return
+    for y, (index, x) in enumerate(zip(indices, right)):
+        d = demands[index]
+        if d is not None:
+            text = "n/a" if d.displacement is None else f"{100 * d.displacement:.3g} cm"
+            ax.annotate(f"isolator d* {text} at {100 * d.probability:g} %", (x, y),
+                        xytext=(6, 0), textcoords="offset points", va="center", fontsize=7,
+                        gid="isolator_demand")
+    ax.set_xlim(0, 1.4 * np.nanmax(right))  # room for the words
 
 
 def _draw_sides(ax, outcome, index, x, n, shown):

@@ -139,6 +139,15 @@ def to_dataset(outcome, history=""):
                 (STRIPE,), d.mean_magnitude, "1", "mean magnitude of the disaggregation")
             data["stripe_mean_distance"] = _variable(
                 (STRIPE,), d.mean_distance, "m", "mean Rrup of the disaggregation")
+    demands = outcome.demands()
+    if demands is not None:
+        values = np.array([np.nan if d is None or d.displacement is None else d.displacement
+                           for d in demands.flat]).reshape(demands.shape)
+        data["isolator_demand"] = _variable(
+            dims, values, "m",
+            f"isolator displacement exceeded with probability target_probability in {years}",
+            comment="lambda_D(d) = integral of P(D > d | im) |d lambda| (lognormal per stripe "
+                    "of isolator_max_displacement, interpolated in ln im)")
     ds = xr.Dataset(data, coords={k: xr.Variable(*v) for k, v in coords.items()})
     ds.attrs.update({
         "Conventions": cf.CONVENTIONS, "title": f"risk of overturning: {outcome.name}",

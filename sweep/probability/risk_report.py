@@ -1,13 +1,13 @@
 """A risk file worked through: hazard → stripes → fragility → risk, and its JSON.
 
-For one body or every body of a grid (docs/risk.md).
+For one body, every body of a grid, or every named option (``risk_options``; docs/risk.md,
+docs/options.md), with an isolator's displacement demand (``isolator_demand``).
 
 :func:`compute` takes a checked risk file (``sweep.io.risk_schema.RiskSpec``) and returns a
 :class:`RiskOutcome`; :func:`known` does the same for a hazard curve and a known lognormal
 fragility, without simulating.  :func:`body_record` is the JSON of one body (the keys of
 docs/design.md §12); ``risk_dataset.to_dataset`` makes the netCDF dataset of it.  SI units.
 """
-from collections import namedtuple
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -16,7 +16,8 @@ from . import fit as fitting
 from . import risk as risk_integral
 from . import risk_inputs
 from . import stripes as stripe_analysis
-from .hazard_curve import poe_from_rate
+from .isolator_demand import record as isolator_record
+from .stripe_results import stripe_results
 
 STATUS_KNOWN = "known"  # the fragility was given, not fitted
 DESCRIBED = {"body.B": "B", "body.H": "H", "contact.mu": "mu"}  # axes that describe_body says
@@ -33,9 +34,12 @@ class RiskOutcome:
     values, attrs)}.  ``warnings``: every caution said while it was computed (``path:
     message``), for the JSON and the dataset.
     ``description``: the scene's body, {name: SI value} (:func:`body_parameters`).
-    ``sides``: each side's overturnings and angles per body (:class:`StripeSides`), None
+    ``sides``: each side's overturnings and angles per body (``stripe_results.StripeSides``), None
     without stripes.  ``placement``: where the stripes' motions act, in words
     (``stripes.placement``: the ground, or a building's floor), None without stripes.
+    ``displacements``: per body the isolator's displacements fitted per stripe
+    (``isolator_demand.StripeDisplacements``; None for a body without an isolator,
+    or no array).  ``options``: the names of a risk file's options, its one body dimension.
     """
 
     curve: object
@@ -56,6 +60,8 @@ class RiskOutcome:
     description: dict = field(default_factory=dict)
     sides: object = None
     placement: str = None
+    displacements: np.ndarray = None
+    options: list = field(default_factory=list)
 
     @property
     def shape(self):
@@ -75,13 +81,20 @@ class RiskOutcome:
         return [self.body_coords[d][1].get("units", "1") for d in self.body_dims]
 
     def option(self, index):
-        """{axis: SI value} of the body at ``index`` of the grid."""
+        """{axis: SI value} of the body at ``index`` of the grid; {"option": name} of a
+        named option."""
+        if self.options:
+            return {"option": self.options[index[0]]}
         return {a: float(self.body_coords[d][0][i])
                 for a, d, i in zip(self.axes(), self.body_dims, index)}
 
     def labels(self):
-        """A label per body: ``H = 0.8 m, contact.mu = 0.3`` (``body`` for one)."""
+        """A label per body: ``H = 0.8 m, contact.mu = 0.3`` (``body`` for one; a named
+        option's name)."""
         out = np.empty(self.shape, dtype=object)
+        if self.options:
+            out[:] = self.options
+            return out
         for index in np.ndindex(*self.shape):
             parts = [f"{a} = {v:.4g}" + (f" {u}" if u != "1" else "")
                      for (a, v), u in zip(self.option(index).items(), self.units())]
@@ -91,8 +104,8 @@ class RiskOutcome:
     def names(self):
         """A name per body for people, from its parameters: ``B 15 cm × H 60 cm (b/h 0.25),
         μ 0.8`` (the scene's body with the grid's values, and the grid's other axes);
-        :meth:`labels` without a scene."""
-        if not self.description:
+        :meth:`labels` without a scene or for named options."""
+        if not self.description or self.options:
             return self.labels()
         out = np.empty(self.shape, dtype=object)
         for index in np.ndindex(*self.shape):
@@ -101,6 +114,27 @@ class RiskOutcome:
                      if not (k == "H" and "b_over_h" in values)}  # B/(b/h) sets H
             out[index] = describe_body({**scene, **values}, dict(zip(self.axes(),
                                                                      self.units())))
+        return out
+
+    def demand(self, index):
+        """The isolator's displacement demand of body ``index`` at the target's probability
+        in ``years`` (``isolator_demand.IsolatorDemand``); None for a body without a friction
+        pendulum, or without a target."""
+        from .isolator_demand import demand
+
+        fitted = None if self.displacements is None else self.displacements[index]
+        if fitted is None or self.target is None:
+            return None
+        return demand(self.curve, fitted, self.years, self.target)
+
+    def demands(self):
+        """:meth:`demand` per body, an object array of body shape; None when no body has
+        one."""
+        if self.displacements is None or self.target is None:
+            return None
+        out = np.empty(self.shape, dtype=object)
+        for index in np.ndindex(*self.shape):
+            out[index] = self.demand(index)
         return out
 
     def fixed(self):
@@ -178,40 +212,29 @@ def compute(spec, folder, say=None, median=None, beta=None):
         plan = stripe_analysis.plan(levels, entry.motions, entry.seed, model=model)
     vs30 = entry.vs30.to_si() if entry.vs30 is not None else \
         (model.vs30 if model is not None else None)
-    paths = stripe_analysis.write_studies(plan, checked.scene, vs30, checked.grid, spec.name,
-                                          folder, entry.model, curve.im)
-    datasets = stripe_analysis.run(paths, say)
-    k, n = stripe_analysis.counts(datasets)
-    fits = stripe_analysis.fit(levels, stripe_analysis.outcomes(datasets),
-                               shared_members=entry.records is not None,
-                               confidence=checked.confidence, replicates=checked.replicates,
-                               seed=entry.seed)
-    risks = np.empty(fits.shape, dtype=object)
-    for index in np.ndindex(*fits.shape):
-        f = fits[index]
-        if f.identifiable:
-            risks[index] = risk_integral.risk(curve, f.theta, f.beta, checked.years,
-                                              f.replicates, checked.confidence)
-        elif f.status == fitting.SEPARATED:
-            risks[index] = separated_risk(curve, levels, k[(slice(None),) + index],
-                                          n[(slice(None),) + index], checked.years,
-                                          checked.confidence)
-        elif not k[(slice(None),) + index].any() and n[(slice(None),) + index].any():
-            risks[index] = risk_integral.none_overturned(
-                curve, levels, n[(slice(None),) + index], checked.years, checked.confidence,
-                independent=entry.records is None)
-    dims = stripe_analysis.body_dims(datasets[0])
-    coords = {d: (np.asarray(datasets[0][d].values, dtype=float),
-                  dict(datasets[0][d].attrs)) for d in dims}
+    if checked.options:
+        from .risk_options import run_options
+
+        results, dims, coords, placement = run_options(spec, plan, vs30, folder, say)
+    else:
+        paths = stripe_analysis.write_studies(plan, checked.scene, vs30, checked.grid,
+                                              spec.name, folder, entry.model, curve.im)
+        results = stripe_results(stripe_analysis.run(paths, say), spec)
+        datasets = results.datasets
+        dims = stripe_analysis.body_dims(datasets[0])
+        coords = {d: (np.asarray(datasets[0][d].values, dtype=float),
+                      dict(datasets[0][d].attrs)) for d in dims}
+        placement = stripe_analysis.placement(checked.scene)
     disaggregation = None
     if model is not None:
         disaggregation = model.disaggregate(levels, risk_inputs.distance_bins(
             checked.hazard.source))
-    outcome = RiskOutcome(curve, checked.years, checked.target, checked.confidence, fits,
-                          risks, dims, coords, plan, k, n, disaggregation, spec.name,
-                          checked.site, description=body_parameters(checked.scene),
-                          sides=stripe_sides(datasets),
-                          placement=stripe_analysis.placement(checked.scene))
+    outcome = RiskOutcome(curve, checked.years, checked.target, checked.confidence,
+                          results.fits, results.risks, dims, coords, plan, results.k,
+                          results.n, disaggregation, spec.name, checked.site,
+                          description=body_parameters(checked.scene), sides=results.sides,
+                          placement=placement, displacements=results.displacements,
+                          options=list(checked.options or ()))
     caution_ends(outcome)
     return outcome
 
@@ -254,9 +277,10 @@ def caution_ends(outcome):
 
     for index in np.ndindex(*outcome.shape):
         r = outcome.risks[index]
+        who = f"{names[index]}: " if outcome.shape else ""
+        _caution_demand(outcome.demand(index), who)
         if r is None:
             continue
-        who = f"{names[index]}: " if outcome.shape else ""
         if r.bound is not None:
             caution(f"{who}{_bound_said(outcome, index, level)}", "stripes")
             continue
@@ -267,6 +291,24 @@ def caution_ends(outcome):
                     f"overturning would come from shaking below the hazard curve's first "
                     f"level, {level(curve.levels[0])}, not included: give a hazard curve "
                     "from lower levels", "hazard")
+
+
+def _caution_demand(found, who):
+    """Caution of an isolator's demand that the stripes do not reach, or of which more than
+    ``isolator_demand.OUTSIDE_SHARE`` comes from shaking outside the stripes' range (the
+    displacements held at the end stripes')."""
+    from ..io.problems import caution
+    from .isolator_demand import OUTSIDE_SHARE, said
+
+    if found is None:
+        return
+    if found.displacement is None:
+        caution(f"{who}isolator displacement: {said(found)}", "stripes")
+    elif found.share_outside > OUTSIDE_SHARE:
+        caution(f"{who}isolator displacement {said(found)}: {100 * found.share_outside:.3g} % "
+                "of its rate comes from shaking outside the stripes' levels, where the "
+                "displacements are held at the nearest stripe's: give stripes over a wider "
+                "range", "stripes")
 
 
 def _above_said(r, curve, level):
@@ -301,29 +343,6 @@ def _bound_said(outcome, index, level):
             f"{100 * below:.3g} % of it comes")
 
 
-SIDE_VARIABLES = ("overturn_direction", "alpha_1", "alpha_2")  # of a stripe's dataset
-StripeSides = namedtuple("StripeSides", "left right alpha_1 alpha_2")
-StripeSides.__doc__ = """Each side of the bodies of the stripes (docs/bodies.md): ``left`` and
-``right``, the motions that overturned the body to the left (−x, about corner 1:
-``overturn_direction`` +1) and to the right, per stripe and body (the shape of
-``RiskOutcome.k``); ``alpha_1``, ``alpha_2`` [rad] per body (equal: G in the middle)."""
-
-
-def stripe_sides(datasets):
-    """The :class:`StripeSides` of the stripes' datasets (``stripes.run``); None for datasets
-    reused from a version that did not write each side."""
-    def motions_first(ds, name):
-        return ds[name].transpose(stripe_analysis.member_dim(ds), ...).values
-
-    if any(name not in ds for ds in datasets for name in SIDE_VARIABLES):
-        return None
-    overturned = stripe_analysis.outcomes(datasets) == 1
-    direction = np.array([motions_first(ds, "overturn_direction") for ds in datasets])
-    angles = (motions_first(datasets[0], name)[0] for name in ("alpha_1", "alpha_2"))
-    return StripeSides((overturned & (direction == 1)).sum(axis=1),
-                       (overturned & (direction == -1)).sum(axis=1), *angles)
-
-
 def asymmetric(outcome, index=()):
     """True when body ``index`` of ``outcome`` has G off the middle (its angles differ)."""
     sides = outcome.sides
@@ -340,37 +359,13 @@ def _record_sources(names, folder):
     return [n if n in records.NAMES else str((Path(folder) / n).resolve()) for n in names]
 
 
-def separated_risk(curve, levels, k, n, years, confidence):
-    """The risk of stripes that separate (none overturned below a gap, all above it): the
-    maximum-likelihood fragility is then a step (β → 0) somewhere in the gap between the
-    highest level with a standing body x_s and the lowest with an overturned one x_o; the
-    estimate takes the step at sqrt(x_s x_o), as the bootstrap does for such replicates
-    (``fit._estimates``).  The interval is that of a step anywhere between the highest level
-    at which no body overturned and the lowest at which all did, [λ(x_all), λ(x_none)]
-    (a curve's end where there is no such level)."""
-    import dataclasses
-
-    levels = np.asarray(levels, dtype=float)
-    standing = levels[(n - k) > 0].max()
-    overturned = levels[k > 0].min()
-    estimate = risk_integral.risk(curve, float(np.sqrt(standing * overturned)), 0.0, years,
-                                  confidence=confidence)
-    none = levels[(k == 0) & (n > 0)]
-    every = levels[(k == n) & (n > 0)]
-    x_none = none.max() if none.size else curve.levels[0]
-    x_all = every.min() if every.size else curve.levels[-1]
-    bounds = (float(curve.rate(x_all)), float(curve.rate(x_none)))
-    return dataclasses.replace(estimate, rate_interval=bounds, probability_interval=tuple(
-        float(p) for p in poe_from_rate(bounds, years)))
-
-
 def _interval(pair):
     return [None if not np.isfinite(v) else float(v) for v in pair]
 
 
 def _side_record(outcome, index):
     """``overturned_left``, ``overturned_right`` per stripe of body ``index``, for the JSON
-    (nothing without :class:`StripeSides`)."""
+    (nothing without ``stripe_results.StripeSides``)."""
     sides = outcome.sides
     along = (slice(None),) + index
     return {} if sides is None else {"overturned_left": sides.left[along].tolist(),
@@ -405,6 +400,9 @@ def body_record(outcome, index=()):
                                  "motions": outcome.n[(slice(None),) + index].tolist()}}
     fragility["units"] = outcome.curve.units
     record["fragility"] = fragility
+    found = outcome.demand(index)
+    if found is not None:
+        record["isolator_demand"] = isolator_record(found)
     if r is None:
         record.update(annual_rate=None, probability=None, years=outcome.years,
                       return_period=None, interval=None, deaggregation=None)
@@ -448,6 +446,8 @@ def report(outcome):
     return {"name": outcome.name, "site": outcome.site, "im": outcome.curve.im,
             "years": outcome.years, "target": outcome.target,
             "bodies": [body_record(outcome, index) for index in np.ndindex(*outcome.shape)],
-            "grid": [{"axis": a, "units": u} for a, u in zip(outcome.axes(), outcome.units())],
+            "grid": [] if outcome.options else [{"axis": a, "units": u} for a, u in zip(
+                outcome.axes(), outcome.units())],
+            "options": outcome.options or None,
             "hazard": hazard_record(outcome), "placement": outcome.placement,
             "warnings": list(outcome.warnings)}

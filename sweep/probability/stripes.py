@@ -21,6 +21,9 @@ A scene whose horizontal motion is a building's floor (``kind: floor``, docs/flo
 its building: the stripe's motion is the floor's ``ground``, scaled at the ground to the level
 of the hazard's IM, and the axes of the motions set the ground's keys
 (``excitation.horizontal.ground.seed``, ``.magnitude``, ``.distance``, ``.name`` or ``.path``).
+An isolated platform (``kind: isolated``, docs/isolation.md) takes the stripe's motion at its
+deepest ``under`` (:func:`ground_keys`): ``under`` itself over the ground, ``under.ground``
+over a building's floor (axes ``excitation.horizontal.under.seed``, ``...under.ground.seed``).
 
 Each stripe is an ordinary study (``<folder>/<name>_stripe<j>.yaml`` and ``.nc``): grid = the
 axes of the risk map, if any (the body's, its contact's, its solver's or its building's:
@@ -37,9 +40,9 @@ from . import fit as fitting
 
 MEMBER = "member"  # the zip dimension of a stripe's motions
 HORIZONTAL = "excitation.horizontal."  # the keys of the stripe's motion on the ground
-GROUND = "excitation.horizontal.ground."  # ... under a building's floor
 # the study axes of the motions (a dimension of its own when alone; else zipped as MEMBER)
-MOTION_AXES = ("seed", "record", *(GROUND + key for key in ("seed", "name", "path")))
+MOTION_AXES = ("seed", "record", *(HORIZONTAL + below + key for below in (
+    "ground.", "under.", "under.ground.") for key in ("seed", "name", "path")))
 
 Stripe = namedtuple("Stripe", "level seeds magnitudes distances")
 Stripe.__doc__ = """The motions of one stripe: IM ``level`` [SI], and per motion its seed,
@@ -83,44 +86,89 @@ def scaling(im, level):
     return {"pga": f"{level!r} m/s^2"}, f"PGA {level:.4g} m/s^2"
 
 
-def _floor(scene):
-    """True when the ``scene``'s horizontal motion is a building's floor (``kind: floor``)."""
+def _horizontal(scene):
+    """The raw horizontal motion of ``scene`` (a mapping, or None)."""
     horizontal = ((scene or {}).get("excitation") or {}).get("horizontal")
-    return isinstance(horizontal, dict) and horizontal.get("kind") == "floor"
+    return horizontal if isinstance(horizontal, dict) else None
+
+
+def ground_keys(scene):
+    """The keys below ``excitation.horizontal`` where the stripes' motion goes: none on the
+    ground; ``ground`` under a building's floor; ``under`` under an isolated platform on the
+    ground, ``under.ground`` under one on a building's floor (the deepest ``under``)."""
+    horizontal = _horizontal(scene) or {}
+    if horizontal.get("kind") == "floor":
+        return ("ground",)
+    if horizontal.get("kind") == "isolated":
+        under = horizontal.get("under")
+        floor = isinstance(under, dict) and under.get("kind") == "floor"
+        return ("under", "ground") if floor else ("under",)
+    return ()
 
 
 def _placed(scene, motion):
-    """The base ``scene`` (body, contact, solver) with the stripe's horizontal ``motion``: the
-    ground of its building's floor, or the horizontal motion itself."""
+    """The base ``scene`` (body, contact, solver) with the stripe's horizontal ``motion`` at
+    :func:`ground_keys`: the ground of its building's floor, under its isolator, or the
+    horizontal motion itself."""
     placed = {k: v for k, v in (scene or {}).items() if k != "excitation"}
-    if _floor(scene):
-        motion = {**scene["excitation"]["horizontal"], "ground": motion}
-    placed["excitation"] = {"horizontal": motion}
+    placed["excitation"] = {"horizontal": _nested(_horizontal(scene), ground_keys(scene),
+                                                  motion)}
     return placed
+
+
+def _nested(outer, keys, motion):
+    """The raw mapping ``outer`` with ``motion`` at the path ``keys`` below it (``motion``
+    itself for no keys)."""
+    if not keys:
+        return motion
+    inner = outer.get(keys[0])
+    return {**outer, keys[0]: _nested(inner if isinstance(inner, dict) else {}, keys[1:],
+                                      motion)}
 
 
 def _axis(scene, key):
     """The study axis that sets the key ``key`` of the stripe's motion: ``seed``, a dotted
-    path below the horizontal motion, or below a floor's ground."""
-    if _floor(scene):
-        return GROUND + key
+    path below the horizontal motion, or below the :func:`ground_keys` of a floor or an
+    isolator."""
+    keys = ground_keys(scene)
+    if keys:
+        return HORIZONTAL + ".".join(keys) + "." + key
     return key if key == "seed" else HORIZONTAL + key
 
 
+def _keys_said(entry):
+    """``period 0.6 s, height_ratio 0.667`` of a raw mapping (a building, an isolator)."""
+    return ", ".join(f"{k} {v}" for k, v in (entry or {}).items())
+
+
 def placement(scene):
-    """Where the stripes' motions act, in words: at the ground under the body, or as the
-    ground of the building whose floor the body stands on (its modes' keys)."""
-    if not _floor(scene):
+    """Where the stripes' motions act, in words: at the ground under the body, as the
+    ground of the building whose floor the body (or its isolated platform) stands on (its
+    modes' keys), or under an isolated platform's isolator (its keys)."""
+    keys = ground_keys(scene)
+    if not keys:
         return "the ground under the body"
-    building = scene["excitation"]["horizontal"].get("building") or {}
-    keys = ", ".join(f"{k} {v}" for k, v in building.items())
-    return ("the ground of a building whose floor the body stands on"
-            + (f" ({keys})" if keys else ""))
+    horizontal = _horizontal(scene)
+    platform = keys[0] == "under"
+    if "ground" in keys:
+        building = _keys_said((horizontal["under"] if platform else horizontal).get("building"))
+        said = (f"the ground of a building whose floor the "
+                f"{'isolated platform' if platform else 'body'} stands on"
+                + (f" ({building})" if building else ""))
+    else:
+        said = "the ground under the isolated platform"
+    if platform:
+        said += f"; the platform's isolator: {_keys_said(horizontal.get('isolator'))}"
+    return said
 
 
 def _under(scene):
-    """``under a building's floor`` in a stripe's title when the motions are a floor's ground."""
-    return " under a building's floor" if _floor(scene) else ""
+    """What the stripes' motions are under, in a stripe's title: a building's floor, an
+    isolator."""
+    keys = ground_keys(scene)
+    return {(): "", ("ground",): " under a building's floor",
+            ("under",): " under an isolator",
+            ("under", "ground"): " under a building's floor and an isolator"}[keys]
 
 
 def _record_study(stripe, scene, grid, name, output, im):
@@ -130,7 +178,7 @@ def _record_study(stripe, scene, grid, name, output, im):
     scaled, said = scaling(im, stripe.level)
     source = "name" if first in records.NAMES else "path"
     excitation = {"kind": "record", source: first, **scaled}
-    axis = _axis(scene, source) if _floor(scene) else "record"
+    axis = _axis(scene, source) if ground_keys(scene) else "record"
     return {"name": name,
             "title": f"stripe at {said}: {len(stripe.distances)} records{_under(scene)} "
                      "(sweep.risk)",

@@ -204,7 +204,7 @@ def test_a_symmetric_body_gets_no_side_line(rock_study):
 def test_stripe_sides_count_each_stripe_and_need_the_variables(rock_study):
     """Each PGA level of the study as a stripe: the counts of ``_sides_by_level``; a dataset
     without alpha_1 (an older version's) gives no sides."""
-    from sweep.probability.risk_report import stripe_sides
+    from sweep.probability.stripe_results import stripe_sides
 
     ds, _ = rock_study
     stripes = [ds.isel(pga=j, drop=True) for j in range(ds.sizes["pga"])]

@@ -114,7 +114,7 @@ def test_nrml_mean_stddev_round_trip(tmp_path, median, beta):
 
 
 def test_separated_stripes_give_a_step_in_the_gap():
-    from sweep.probability.risk_report import separated_risk
+    from sweep.probability.stripe_results import separated_risk
 
     curve = HazardCurve("pga", [0.5, 1.5, 3.0, 7.0], [1e-2, 2e-3, 4e-4, 1e-5])
     levels = np.array([1.0, 2.0, 4.0])
