@@ -7,13 +7,21 @@ What a mode provides to the loop:
 3. ``events.event_values``: the functions g > 0 that hold while the mode does;
 4. its rows of the mode table, ``transitions.on_event``: each event's law and next mode.
 
-Rest integrates nothing: ``rest_skipping.rest_exit`` skips to the next instant at which the
+Rest integrates nothing: the scan of ``rest_skipping`` skips to the next instant at which the
 floor can move the body.  A step never crosses a break of the floor motion; after one, the
 mode's guards are tested again with the new floor values.  The loop ends at t_end, at
 overturning, at final rest once the floor is still for good, or with a failure status
 (step/event budget, non-finite state, Painleve, or a stop request of a watchdog thread
 read from the control array ``ctl`` once per pass of the loop: compiled code cannot be
 interrupted by a signal, so a thread that wants it to stop writes a flag that it reads).
+
+Every pass of the loop takes at most one Runge-Kutta step or one interval of a rest's scan,
+so that the lanes of a GPU warp, one scene each, do alike work in a pass (docs/gpu.md, "One
+step per pass").  A step in which an event is found ends its pass; the next pass steps again
+from the same state exactly to the event (the event ``k_to`` and the step ``dt_to`` carried
+from one pass to the next), polishes it and applies the event's law.  A rest's scan carries
+its position ``ta``, ``phi_a`` and end ``t_scan`` from pass to pass; the rest's time is
+added once, when the scan ends.
 """
 import math
 
@@ -32,7 +40,8 @@ from .ground import G, amplitudes, ground, ground_end, next_break
 from .history import hold, sample_step
 from .integrate import FIRST_STEP, fit_dense, next_step_size, step
 from .motion import from_full, n_dof, rhs, to_full
-from .rest_skipping import anchored_threshold, rest_exit, rest_threshold
+from .rest_skipping import (anchored_threshold, rest_begin, rest_interval, rest_scanning,
+                            rest_threshold)
 from .state import Step, new_work, scene_of
 from .tableaus import tableau
 from .tolerances import (BREAK_GUARD, ERR_FLOOR, MIN_DT, MIN_RETRY_DT, RETRY_SHRINK,
@@ -149,6 +158,10 @@ def run_scene(row, rec, res, log, hist, ctl, work):
     clamps = 0
     cell = ctl[CTL_CELL]              # a stop request names the cell, never a later one
     dt_next = solver.dt if not adaptive else min(solver.max_step, FIRST_STEP)
+    t_brk = t_lim = math.inf          # the next break of the floor motion, and its guard
+    k_to, dt_to = -1, 0.0             # an event found in the last pass's step, the step to it
+    scanning = False                  # a rest's scan is under way: at ta, phi_a, up to t_scan
+    t_e, ta, phi_a, t_scan = math.inf, 0.0, 0.0, 0.0
     mode, s, sigma = initial_mode(q, scene, rec)
     if held:                                          # (it starts flat at rest: api)
         mode, s, sigma = REST, 0.0, 0.0
@@ -164,14 +177,21 @@ def run_scene(row, rec, res, log, hist, ctl, work):
             break
         n = n_dof(mode)
         if mode == REST:
-            if t >= t_still:
-                break                                   # final rest: nothing can move it
-            te = rest_exit(t, t_end, kappa, floor, rec)
-            t1 = min(te, t_end)
+            if not scanning:
+                if t >= t_still:
+                    break                               # final rest: nothing can move it
+                t_e, phi_a, t_scan = rest_begin(t, t_end, kappa, floor, rec)
+                ta = t
+            if rest_scanning(t_e, ta, t_scan):          # one interval a pass
+                t_e, ta, phi_a = rest_interval(ta, phi_a, t_scan, kappa, floor, rec)
+            scanning = rest_scanning(t_e, ta, t_scan)
+            if scanning:
+                continue
+            t1 = min(t_e, t_end)
             nh = hold(hist, nh, t1, q, REST, floor, rec, solver.dt_out)
             mode_time[REST] += t1 - t
             t = t1
-            if te >= t_end:
+            if t_e >= t_end:
                 break
             a_x, a_y = ground(t, floor, rec)
             if held:                                    # a tie gives way, for good
@@ -188,35 +208,40 @@ def run_scene(row, rec, res, log, hist, ctl, work):
                 status = PAINLEVE
             continue
 
-        if steps >= solver.max_steps or events >= solver.max_events:
-            status = BUDGET_EXHAUSTED
-            break
-        t_brk = next_break(t, floor)
-        t_lim = t_brk - BREAK_GUARD if t_brk < math.inf else math.inf
-        if not adaptive:
-            dt_next = solver.dt
-        dt = min(dt_next, solver.max_step, t_end - t, t_brk - t)
-        err = step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
-        steps += 1
-        if not _finite(z_new, n):
-            if adaptive and dt > MIN_RETRY_DT:
-                dt_next = RETRY_SHRINK * dt
+        k_e = k_to
+        if k_e < 0:
+            if steps >= solver.max_steps or events >= solver.max_events:
+                status = BUDGET_EXHAUSTED
+                break
+            t_brk = next_break(t, floor)
+            t_lim = t_brk - BREAK_GUARD if t_brk < math.inf else math.inf
+            if not adaptive:
+                dt_next = solver.dt
+            dt = min(dt_next, solver.max_step, t_end - t, t_brk - t)
+            err = step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
+            steps += 1
+            if not _finite(z_new, n):
+                if adaptive and dt > MIN_RETRY_DT:
+                    dt_next = RETRY_SHRINK * dt
+                    continue
+                status = NON_FINITE
+                break
+            if adaptive:
+                dt_next = next_step_size(dt, err, err_old, tab.order)
+                if err > 1.0:
+                    if dt_next < MIN_DT * max(1.0, t):
+                        status = BUDGET_EXHAUSTED
+                    continue
+                err_old = max(err, ERR_FLOOR)
+            taken = Step(mode, n, t, dt, z, z_new, K, end, D)
+            fit_dense(method, taken)
+            k_e, x_e = first_event(taken, ctx, scene, rec, values, scratch)
+            if k_e >= 0:
+                k_to, dt_to = k_e, x_e * dt     # the next pass steps again, exactly to it
                 continue
-            status = NON_FINITE
-            break
-        if adaptive:
-            dt_next = next_step_size(dt, err, err_old, tab.order)
-            if err > 1.0:
-                if dt_next < MIN_DT * max(1.0, t):
-                    status = BUDGET_EXHAUSTED
-                continue
-            err_old = max(err, ERR_FLOOR)
-
-        taken = Step(mode, n, t, dt, z, z_new, K, end, D)
-        fit_dense(method, taken)
-        k_e, x_e = first_event(taken, ctx, scene, rec, values, scratch)
-        if k_e >= 0:
-            dt = x_e * dt            # step again, exactly to the event
+        else:                           # the last pass found an event: the step to it
+            k_to = -1
+            dt = dt_to
             if dt > 0.0:
                 step(method, mode, n, t, z, dt, t_lim, ctx, scene, rec, K, z_stage, z_new)
                 dt += polish(k_e, Step(mode, n, t, dt, z, z_new, K, end, D), ctx, scene,
