@@ -14,7 +14,8 @@ amplifies the last bit).  Statuses must be identical.  Writes a Markdown report
 
 ``--ptx FILE`` needs no GPU: it writes the kernel's PTX for sm_90 and prints its figures
 (lines, byte loads, ``bfi``) and, where the CUDA toolkit's ``ptxas`` is installed (the cuda
-extra's ``nvidia-cuda-nvcc``), those of ``ptxas -v``: registers per thread, spills, stack.
+extra's ``nvidia-cuda-nvcc``), those of ``ptxas -v``: registers per thread, spills, stack;
+``--max-registers N`` gives ptxas's under that limit (numba-cuda's ``max_registers``).
 """
 import argparse
 import collections
@@ -167,26 +168,28 @@ def ptxas_path():
     return shutil.which("ptxas")
 
 
-def ptxas_figures(path, ptxas):
-    """Registers per thread, spill stores and loads and stack frame [bytes] of the entry
-    function of the PTX file ``path``, from ``ptxas -v`` for sm_90, and its seconds."""
+def ptxas_figures(path, ptxas, max_registers=None):
+    """Registers per thread and stack frame [bytes] of the entry function of the PTX file
+    ``path``, spill stores and loads [bytes] of all its functions (the entry and the device
+    functions it calls), from ``ptxas -v`` for sm_90 (with ``-maxrregcount``, numba-cuda's
+    ``max_registers``, where given), and its seconds."""
     t0 = time.perf_counter()
-    said = subprocess.run([ptxas, "-v", f"-arch=sm_{PTX_CC[0]}{PTX_CC[1]}", str(path), "-o",
-                           os.devnull], capture_output=True, text=True, check=True).stderr
+    limit = [f"-maxrregcount={max_registers}"] if max_registers else []
+    said = subprocess.run([ptxas, "-v", f"-arch=sm_{PTX_CC[0]}{PTX_CC[1]}", *limit, str(path),
+                           "-o", os.devnull], capture_output=True, text=True, check=True).stderr
     entry = re.escape(_ENTRY.search(said).group(1))
-    stack, stores, loads = re.search(
-        rf"Function properties for {entry}\s+(\d+) bytes stack frame, (\d+) bytes spill "
-        r"stores, (\d+) bytes spill loads", said).groups()
+    stack = re.search(rf"Function properties for {entry}\s+(\d+) bytes stack frame", said)[1]
     registers = re.search(rf"Function properties for {entry}\s+.*\n.*Used (\d+) registers",
                           said).group(1)
-    return {"registers": int(registers), "spill stores [B]": int(stores),
-            "spill loads [B]": int(loads), "stack frame [B]": int(stack),
+    spills = re.findall(r"(\d+) bytes spill stores, (\d+) bytes spill loads", said)
+    return {"registers": int(registers), "spill stores [B]": sum(int(s) for s, _ in spills),
+            "spill loads [B]": sum(int(n) for _, n in spills), "stack frame [B]": int(stack),
             "ptxas [s]": round(time.perf_counter() - t0, 1)}
 
 
-def write_ptx(path):
-    """Write the kernel's PTX for sm_90 to ``path`` and print its figures (0), or say in one
-    line why it cannot be compiled (2)."""
+def write_ptx(path, max_registers=None):
+    """Write the kernel's PTX for sm_90 to ``path`` and print its figures (0), ptxas's with
+    ``max_registers`` where given, or say in one line why it cannot be compiled (2)."""
     if importlib.util.find_spec("numba_cuda") is None:
         print("benchmarks.gpu: --ptx needs numba-cuda (pip install '.[cuda]'); nothing was "
               "written", file=sys.stderr)
@@ -196,7 +199,8 @@ def write_ptx(path):
     figures = {"PTX compile [CPU s]": round(time.process_time() - t0, 1), **ptx_figures(text)}
     path.write_text(text)
     ptxas = ptxas_path()
-    figures.update(ptxas_figures(path, ptxas) if ptxas else {"ptxas": "not found"})
+    figures.update(ptxas_figures(path, ptxas, max_registers) if ptxas else
+                   {"ptxas": "not found"})
     print(f"{path}: " + ", ".join(f"{name} {value:,}" if isinstance(value, int) else
                                   f"{name} {value}" for name, value in figures.items()))
     return 0
@@ -218,9 +222,12 @@ def main(argv=None):
     parser.add_argument("--ptx", type=Path, metavar="FILE",
                         help="no GPU needed: write the kernel's PTX for sm_90 to FILE and print "
                              "its figures (and ptxas -v's, where ptxas is installed)")
+    parser.add_argument("--max-registers", type=int, metavar="N",
+                        help="with --ptx: ptxas's figures with at most N registers per thread "
+                             "(numba-cuda's max_registers; default: no limit)")
     args = parser.parse_args(argv)
     if args.ptx:
-        return write_ptx(args.ptx)
+        return write_ptx(args.ptx, args.max_registers)
     why = door.unavailable()
     if why is not None:
         print(f"benchmarks.gpu: needs an NVIDIA GPU and numba-cuda: {why}; nothing was run",

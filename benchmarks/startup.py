@@ -6,9 +6,11 @@ The cold compile runs in a child process with an empty numba cache folder of its
 the finished child (user + system), so imports count too.  The warm start is the wall time
 from launch to exit of ``python -m sweep.scene studies/steady_rocking.yaml --json`` on that
 now warm cache, against ``python -c "import numba"`` launched the same way, alternating, median
-of the runs; the scene's own ``cpu_s`` is read from its JSON.  In this process, the CPU time of
-one ``sweep.simulate(scene)`` call (file read aside: the scene as a dict) against the kernel's
-own ``cpu_s`` of that call, medians over many calls: what a notebook loop over scenes pays.
+of the runs, and so is that of ``python -m sweep.run studies/smoke.yaml`` (384 cells, one
+rank, into a temporary folder); the scene's own ``cpu_s`` is read from its JSON.  In this
+process, the CPU time of one ``sweep.simulate(scene)`` call (file read aside: the scene as a
+dict) against the kernel's own ``cpu_s`` of that call, medians over many calls: what a
+notebook loop over scenes pays.
 """
 import json
 import os
@@ -24,6 +26,7 @@ from .markdown import Section, ms, table, verdict
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = "studies/steady_rocking.yaml"
+STUDY = "studies/smoke.yaml"
 COLD = ("import sweep; from sweep.runner.cells import warm_up; "
         f"sweep.simulate({SCENE!r}); warm_up()")
 TARGET_COLD_CPU = 20.0      # s of CPU for the first compile (docs/design.md 10)
@@ -66,16 +69,20 @@ def measure(quick):
     with tempfile.TemporaryDirectory(prefix="bench_cache_") as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache}
         cold_wall, cold_cpu, _ = _child_cpu([sys.executable, "-c", COLD], env)
-        scene, numba, cpu_s = [], [], []
+        scene, numba, cpu_s, study = [], [], [], []
+        run = [sys.executable, "-m", "sweep.run", STUDY, "--force", "--quiet", "-o",
+               str(Path(cache) / "smoke.nc")]
         for _ in range(repeats):
             wall, _, out = _child_cpu([sys.executable, "-m", "sweep.scene", SCENE, "--json"],
                                       env)
             scene.append(wall)
             cpu_s.append(json.loads(out)["cpu_s"])
             numba.append(_child_cpu([sys.executable, "-c", "import numba"], env)[0])
+            study.append(_child_cpu(run, env)[0])
     call, kernel = simulate_cost(50 if quick else 400)
     return {"cold_wall": cold_wall, "cold_cpu": cold_cpu, "scene": statistics.median(scene),
             "numba": statistics.median(numba), "cpu_s": statistics.median(cpu_s),
+            "study": statistics.median(study),
             "repeats": repeats, "call": call, "kernel": kernel}
 
 
@@ -105,5 +112,6 @@ def section(quick):
         "of the child (imports included). Then, on that warm cache, "
         f"`python -m sweep.scene {SCENE} --json` and `python -c \"import numba\"` are launched "
         f"alternately, {m['repeats']} times each, wall time from launch to exit (medians). The "
-        f"scene's own `cpu_s` (the simulation alone) is {ms(m['cpu_s'])} ms.", "",
+        f"scene's own `cpu_s` (the simulation alone) is {ms(m['cpu_s'])} ms; a warm "
+        f"`python -m sweep.run {STUDY}` (384 cells, one rank) takes {m['study']:.2f} s.", "",
         table(["target (docs/design.md 10)", "measured", "met"], rows), ""]), rows)

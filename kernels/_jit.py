@@ -35,12 +35,22 @@ source, ``CACHE_DIR`` = ``$XDG_CACHE_HOME`` (or ``~/.cache``)
 when set, is used as it is.  The first compile says so on stderr, once (rank 0 only under
 MPI).
 
+Start-up.  numba's CPU target loads its registries at the first function it compiles or
+loads from the cache (``refresh``); one of them, ``numba.np.arraymath``, imports
+``scipy.linalg`` at once (0.13 s of a warm scene's 0.7) to see whether a BLAS is there for
+``np.dot``.  :func:`_quicker` skips that look while the registries load: scipy is a dependency
+of the package, which is what the look would find, and numba still imports scipy's BLAS (and
+checks it) before it compiles a BLAS call; no kernel function makes one.  It also holds the
+garbage collector off meanwhile: the registries' tables are some 54,000 objects that live as
+long as the process, and collections among them took 0.05 s.
+
 Contraction.  ``KERNEL_CONTRACT=1`` compiles the kernel with LLVM's ``contract`` flag alone,
 which fuses a*b + c into one rounding (an FMA) as GPU compilers do by default, into a cache
 folder of its own (``-contract``).  It is not for results: ``benchmarks/gpu.py`` measures with
 it how far results move when only the rounding of the arithmetic changes, the yardstick for
 the GPU's results (docs/gpu.md).
 """
+import gc
 import hashlib
 import os
 import sys
@@ -71,7 +81,7 @@ if CONTRACT and not CACHE_DIR.endswith("-contract"):
 os.environ["NUMBA_CACHE_DIR"] = CACHE_DIR  # read by numba at import, inherited by children
 
 import numba  # noqa: E402  (after NUMBA_CACHE_DIR is set)
-from numba.core import event, types  # noqa: E402
+from numba.core import cpu, event, types  # noqa: E402
 
 numba.config.reload_config()  # in case numba was imported before this module
 
@@ -135,6 +145,35 @@ class _Announcer(event.Listener):
 
     def on_end(self, ev):
         pass
+
+
+def _blas_of_scipy():
+    """Stands for ``numba.np.linalg.ensure_blas`` while numba's registries load (scipy, a
+    dependency of the package, provides BLAS)."""
+
+
+def _quicker(refresh):
+    """``refresh`` (``CPUContext.refresh``, which loads numba's registries) without numba's
+    look for a BLAS, and without garbage collections while it makes its tables."""
+    def refresh_registries(self):
+        from numba.np import linalg
+        probe = getattr(linalg, "ensure_blas", None)
+        if probe is None:                 # another numba: its registries load as they do
+            return refresh(self)
+        linalg.ensure_blas = _blas_of_scipy
+        collecting = gc.isenabled()
+        gc.disable()
+        try:
+            refresh(self)
+        finally:
+            linalg.ensure_blas = probe
+            if collecting:
+                gc.enable()
+    return refresh_registries
+
+
+if hasattr(cpu.CPUContext, "refresh"):
+    cpu.CPUContext.refresh = _quicker(cpu.CPUContext.refresh)
 
 
 def launcher_rank():

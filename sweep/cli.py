@@ -21,7 +21,10 @@ The decorated ``main`` returns the exit status instead of a traceback when
 * the user presses Ctrl-C: one line ``interrupted`` on stderr, status 130 = 128 + SIGINT.
 
 It prints an input file's values that are likely not meant (``InputWarning``) as one line
-each, ``warning: <path>: <message>``.
+each, ``warning: <path>: <message>``.  A command run to its end leaves the objects alive at
+the interpreter's exit out of its last garbage collections (``gc.freeze`` at exit): walking
+numba's compiler state took 0.2 s of a warm ``sweep.scene``; what their counts free still
+goes, and every file is written and closed before.
 
 ``argument_parser`` makes a command's ``argparse`` parser: named as it was called
 (``rigid-scene`` as the console script, ``python -m sweep.scene`` otherwise; :func:`program`),
@@ -32,7 +35,9 @@ quantities.
 ``print_json`` prints standard JSON (RFC 8259): NaN and infinities become ``null``; a long
 list can be kept on one line, so that a reader sees the keys before the arrays.
 """
+import atexit
 import functools
+import gc
 import json
 import math
 import os
@@ -80,6 +85,7 @@ def command(main):
                 warnings.showwarning = _show_input_warning(warnings.showwarning)
                 status = main(argv)
             sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
+            _no_collection_at_exit()
             return status
         except BrokenPipeError:
             devnull = os.open(os.devnull, os.O_WRONLY)
@@ -89,6 +95,12 @@ def command(main):
             print("interrupted", file=sys.stderr)
             return EXIT_INTERRUPTED
     return guarded
+
+
+@functools.cache
+def _no_collection_at_exit():
+    """Keep the interpreter's last garbage collections off the objects alive at its exit."""
+    atexit.register(gc.freeze)
 
 
 def program(module):

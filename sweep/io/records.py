@@ -9,12 +9,13 @@ How each record was read (its :class:`~sweep.io.formats.base.Reading`) is what
 :func:`floor_provenance` gives a scene's outputs.
 """
 import functools
+import importlib
 import importlib.resources
 import math
 from pathlib import Path
 from stat import S_ISREG
 
-from .formats import columns, cosmos, knet
+from .formats import columns
 from .formats.at2 import read_at2
 from .formats.base import MAX_SAMPLES, Reading, Record, RecordError
 from .formats.columns import read_two_column
@@ -34,14 +35,25 @@ columns (time, acceleration), one column (accelerations; ``dt`` given)."""
 # Anchored at the sweep.data folder: files("sweep") fails while an editable install made before
 # sweep/__init__.py existed presents sweep as a namespace package.
 _DATA = importlib.resources.files("sweep.data") / "records"
-_BY_EXTENSION = {".at2": "at2", **dict.fromkeys(cosmos.EXTENSIONS, "cosmos"),
-                 **dict.fromkeys(knet.EXTENSIONS, "knet")}
 # What each format gives itself, for refusing a dt given for it
 _OWN = {"at2": "a PEER .AT2 file gives its DT",
         "knet": "a K-NET file gives its sampling rate",
         "cosmos": "a COSMOS or CSMIP file gives its sample step",
         "columns": "a two-column file gives its times (format: column reads accelerations "
                    "written two to a line)"}
+
+
+def _reader(format):
+    """The module of :mod:`sweep.io.formats` that reads ``format`` (``cosmos``, ``knet``),
+    imported at its first use: a scene without a record file needs neither."""
+    return importlib.import_module(f".formats.{format}", __package__)
+
+
+@functools.cache
+def _by_extension():
+    """{lower-case file extension: the format it says}."""
+    return {".at2": "at2", **dict.fromkeys(_reader("cosmos").EXTENSIONS, "cosmos"),
+            **dict.fromkeys(_reader("knet").EXTENSIONS, "knet")}
 
 
 @functools.lru_cache(maxsize=None)
@@ -83,7 +95,7 @@ def detect_format(path):
     (time, acceleration); one number, or three or more, are accelerations alone.
     """
     path = Path(path)
-    by_extension = _BY_EXTENSION.get(path.suffix.lower())
+    by_extension = _by_extension().get(path.suffix.lower())
     if by_extension:
         return by_extension
     try:
@@ -127,9 +139,9 @@ def _read_file_cached(path, format, units, dt, component, stamp):
     if format == "at2":
         return read_at2(path, units)
     if format == "knet":
-        return knet.read_knet(path, units)
+        return _reader(format).read_knet(path, units)
     if format == "cosmos":
-        return cosmos.read_cosmos(path, component, units)
+        return _reader(format).read_cosmos(path, component, units)
     if format == "columns":
         return read_two_column(path, units)
     if dt is None:
