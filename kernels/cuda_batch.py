@@ -1,14 +1,16 @@
-"""The chunk kernel on an NVIDIA GPU: one thread per scene row (numba-cuda).
+"""The chunk kernel on an NVIDIA GPU: resident threads taking scene rows in turn (numba-cuda).
 
 ``driver.run_scene`` is the device function as it is: numba-cuda compiles a CPU-compiled
 function called from a CUDA kernel for the device from its Python source, with every function
 it calls, so the CPU and the GPU run one source.  What device code cannot do, the source
 leaves to its callers: the scene's buffers (``state.WORK_DTYPE``) are a record in each
-thread's local memory, zeroed by the thread, as ``driver.run_cells`` zeroes them on the CPU
-(local memory interleaves the threads' words, so a warp's lanes read neighbouring
-addresses).  A thread runs its scene to the end (DiffEqGPU's per-thread ensemble kernels,
-MPGOS): there is no wall-time budget on the device, only the scene's step and event
-budgets.  A study's records stay in device memory from chunk to chunk
+thread's local memory, zeroed by the thread before each of its rows, as ``driver.run_cells``
+zeroes them on the CPU (local memory interleaves the threads' words, so a warp's lanes read
+neighbouring addresses).  A launch has as many threads as the device holds resident
+(:func:`launch_grid`); each takes the next row from an atomic counter, in grid order, and
+runs its scene to the end (DiffEqGPU's per-thread ensemble kernels, MPGOS: one trajectory a
+thread) before it takes another: there is no wall-time budget on the device, only the
+scene's step and event budgets.  A study's records stay in device memory from chunk to chunk
 (:class:`DeviceRecords`).  The compiled kernel is cached on disk beside the CPU's, in
 ``_jit.CACHE_DIR`` (named after the digest of the kernel's sources; numba-cuda's cache keys
 hold the compute capability).
@@ -24,6 +26,7 @@ import numpy as np
 if not hasattr(np, "row_stack"):   # numpy 2.5 removed it; numba-cuda 0.30 still overloads it
     np.row_stack = np.vstack
 from numba import cuda, float64, from_dtype, int64  # noqa: E402  (after the shim)
+from numba.cuda import config  # noqa: E402
 
 from . import api, codes
 from ._jit import launcher_rank
@@ -31,27 +34,60 @@ from .driver import run_scene
 from .state import WORK_DTYPE
 from .watchdog import control
 
-THREADS_PER_BLOCK = 128  # scenes per block; a thread's registers, not shared memory, bound it
+THREADS_PER_BLOCK = 128  # threads per block; a thread's registers, not shared memory, bound it
 BATCH = 1 << 20          # scenes per launch, in grid order: rows and results take 0.6 kB each
+SIMULATED_GRID = (1, 3)  # blocks and threads on the simulator: fewer threads than rows
+WARP = 32
+REGISTER_UNIT = 256      # registers go to a warp in units of 256 (sm_50 to sm_90)
 _WORK = np.dtype((np.record, WORK_DTYPE))   # read by field name, also on the simulator
 
 
 @cuda.jit(cache=True)
-def _run_rows(rows, rec, results, log, hist, ctl):
-    """Scene row i of ``rows`` into record i of ``results``, thread by thread."""
-    i = cuda.grid(1)
-    if i < rows.shape[0]:
-        work = cuda.local.array(1, _WORK)
-        words = work.view(np.float64)
+def _run_rows(rows, rec, results, log, hist, ctl, taken):
+    """Scene rows of ``rows`` into their records of ``results``: each thread takes the next
+    row from the counter ``taken[0]`` (rows in increasing order) until none is left."""
+    work = cuda.local.array(1, _WORK)
+    words = work.view(np.float64)
+    i = cuda.atomic.add(taken, 0, 1)
+    while i < rows.shape[0]:
         for k in range(words.size):
             words[k] = 0.0
         run_scene(rows[i], rec, results[i], log, hist, ctl, work[0])
+        i = cuda.atomic.add(taken, 0, 1)
+
+
+def resident_blocks(regs, device, threads=THREADS_PER_BLOCK):
+    """Blocks of ``threads`` that one multiprocessor of ``device`` (its attributes) holds at
+    once for a kernel of ``regs`` registers per thread and no shared memory: NVIDIA's
+    occupancy calculation (CUDA C++ Best Practices Guide, "Calculating Occupancy")."""
+    per_warp = -(-regs * WARP // REGISTER_UNIT) * REGISTER_UNIT
+    warps = -(-threads // WARP)
+    return max(1, min(device.MAX_REGISTERS_PER_MULTIPROCESSOR // per_warp // warps,
+                      device.MAX_THREADS_PER_MULTIPROCESSOR // threads,
+                      device.MAX_BLOCKS_PER_MULTIPROCESSOR))
+
+
+def launch_grid(n, regs, device):
+    """(blocks, threads per block) of a launch over ``n`` rows: the threads ``device`` holds
+    resident at ``regs`` registers per thread, and no more blocks than the rows fill."""
+    blocks = resident_blocks(regs, device) * device.MULTIPROCESSOR_COUNT
+    return min(blocks, -(-n // THREADS_PER_BLOCK)), THREADS_PER_BLOCK
+
+
+def _grid(args):
+    """The grid of ``_run_rows`` on ``args``: :func:`launch_grid` for its registers on the
+    current device (compiled or loaded first), :data:`SIMULATED_GRID` on the simulator."""
+    if config.ENABLE_CUDASIM:
+        return SIMULATED_GRID
+    kernel = _run_rows.compile(tuple(_run_rows.typeof_pyval(a) for a in args))
+    return launch_grid(args[0].shape[0], kernel.regs_per_thread, cuda.get_current_device())
 
 
 def _argument_types():
     """The types of ``_run_rows``'s arguments as :func:`run_cells` passes them."""
     row, result = (from_dtype(d) for d in (codes.SCENE_DTYPE, codes.RESULT_DTYPE))
-    return row[::1], float64[::1], result[::1], float64[:, ::1], float64[:, ::1], int64[::1]
+    return (row[::1], float64[::1], result[::1], float64[:, ::1], float64[:, ::1], int64[::1],
+            int64[::1])
 
 
 @contextlib.contextmanager
@@ -139,10 +175,9 @@ def run_cells(rows, rec, batch=BATCH):
     hist = cuda.to_device(np.zeros((0, codes.N_HIST)))
     ctl = cuda.to_device(control(cell=0))       # no stop request names cell 0
     for start in range(0, rows.shape[0], batch):
-        part = rows[start:start + batch]
         d_results = cuda.to_device(results[start:start + batch])
-        blocks = (part.shape[0] + THREADS_PER_BLOCK - 1) // THREADS_PER_BLOCK
-        _run_rows[blocks, THREADS_PER_BLOCK](cuda.to_device(part), d_rec, d_results, log, hist,
-                                             ctl)
+        args = (cuda.to_device(rows[start:start + batch]), d_rec, d_results, log, hist, ctl,
+                cuda.to_device(np.zeros(1, np.int64)))
+        _run_rows[_grid(args)](*args)
         results[start:start + batch] = d_results.copy_to_host()
     return results

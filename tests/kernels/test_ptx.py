@@ -98,13 +98,14 @@ def test_the_kernel_loads_no_field_a_byte_at_a_time(ptx):
 
 @pytest.mark.slow
 def test_each_thread_s_work_record_is_in_local_memory(ptx):
-    """The kernel takes no work array: its arguments are rows, rec, results, ctl (1-d) and
-    log, hist (2-d), and a local depot holds the thread's 1,168-byte ``WORK_DTYPE`` record."""
+    """The kernel takes no work array: its arguments are rows, rec, results, ctl, the row
+    counter (1-d) and log, hist (2-d), and a local depot holds the thread's 1,168-byte
+    ``WORK_DTYPE`` record."""
     entry = ptx[ptx.index(".entry"):]
     params = entry[:entry.index(")")].count(".param")
     depots = [int(n) for n in re.findall(r"__local_depot\d+\[(\d+)\]", entry)]
     # an array argument is meminfo, parent, size, itemsize, data and ndim shapes and strides
-    assert params == 4 * (5 + 2 * 1) + 2 * (5 + 2 * 2)
+    assert params == 5 * (5 + 2 * 1) + 2 * (5 + 2 * 2)
     assert max(depots) >= state.WORK_DTYPE.itemsize
 
 
