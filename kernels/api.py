@@ -20,7 +20,8 @@ held quantity, "f_start": Hz, "f_stop": Hz, "duration": s, "law": "log"|"linear"
 ``{"kind": "record", "samples": ndarray m/s^2, "dt": s, "scale": 1.0}``,
 ``{"kind": "pulse", "shape": "rectangular"|"triangular", "amplitude": m/s^2, "duration": s}``.
 Missing keys take the values of ``DEFAULTS``.  An anchored body starts flat at rest
-(docs/anchors.md).  Sign convention: x and a_x positive to the right, theta > 0 is rotation about the left corner (docs/physics.md section 1.1).
+(docs/anchors.md).  Sign convention: x and a_x positive to the right, theta > 0 is rotation
+about the left corner (docs/physics.md section 1.1).
 """
 import math
 import time

@@ -7,8 +7,8 @@ once per ground and building at scale 1 (the building is linear), so the record'
 the ground's scale or the sine's amplitude.  The floor starts with its ground and rings down
 after it (docs/floors.md).  A linear isolator is one mode of participation 1 over the motion
 under it, its largest displacement that of the oscillator over the motion under it sampled
-(``groundmotion.oscillator``); a friction pendulum (``sweep.groundmotion.isolator``) is not linear and is computed
-at the motion's scale (docs/isolation.md).
+(``groundmotion.oscillator``); a friction pendulum (``sweep.groundmotion.isolator``) is not
+linear and is computed at the motion's scale (docs/isolation.md).
 """
 import math
 

@@ -28,8 +28,9 @@ over a building's floor (axes ``excitation.horizontal.under.seed``, ``...under.g
 Each stripe is an ordinary study (``<folder>/<name>_stripe<j>.yaml`` and ``.nc``): grid = the
 axes of the risk map, if any (the body's, its contact's, its solver's or its building's:
 ``sweep.io.risk_schema`` refuses an axis that sets the motion), × the motions (a zip of
-``seed``, magnitude and distance), run through the runner (``runner.launch.run_file``, as ``python -m sweep.run`` runs it; a
-dataset whose fingerprint matches its inputs is reused).  SI units.
+``seed``, magnitude and distance), run through the runner (``runner.launch.run_file``, as
+``python -m sweep.run`` runs it; a dataset whose fingerprint matches its inputs is reused).
+SI units.
 """
 from collections import namedtuple
 from pathlib import Path
