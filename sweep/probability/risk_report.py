@@ -21,6 +21,16 @@ from .stripe_results import stripe_results
 
 STATUS_KNOWN = "known"  # the fragility was given, not fitted
 DESCRIBED = {"body.B": "B", "body.H": "H", "contact.mu": "mu"}  # axes that describe_body says
+# other axes in a conservator's words (describe_body), the rest by their dotted path
+_HORIZONTAL = "excitation.horizontal."
+SAID = {"restraint.strength": "anchor", "body.mass": "mass",
+        **{f"{_HORIZONTAL}{place}building.{key}": said
+           for place in ("", "under.") for key, said in (
+               ("period", "building period"), ("damping", "building damping"),
+               ("height_ratio", "floor height ratio"))},
+        **{f"{_HORIZONTAL}isolator.{key}": f"isolator {said}" for key, said in (
+            ("mu", "μ"), ("radius", "R"), ("period", "period"), ("damping", "damping"),
+            ("displacement_capacity", "capacity"))}}
 
 
 @dataclass
@@ -89,14 +99,15 @@ class RiskOutcome:
                 for a, d, i in zip(self.axes(), self.body_dims, index)}
 
     def labels(self):
-        """A label per body: ``H = 0.8 m, contact.mu = 0.3`` (``body`` for one; a named
-        option's name)."""
+        """A label per body: ``H = 0.8 m, contact.mu = 0.3, anchor 800 N`` (:data:`SAID`'s
+        words where it has them; ``body`` for one; a named option's name)."""
         out = np.empty(self.shape, dtype=object)
         if self.options:
             out[:] = self.options
             return out
         for index in np.ndindex(*self.shape):
-            parts = [f"{a} = {v:.4g}" + (f" {u}" if u != "1" else "")
+            parts = [(f"{SAID[a]} " if a in SAID else f"{a} = ") + f"{v:.4g}"
+                     + (f" {u}" if u != "1" else "")
                      for (a, v), u in zip(self.option(index).items(), self.units())]
             out[index] = ", ".join(parts) or "body"
         return out
@@ -146,8 +157,8 @@ class RiskOutcome:
 
 def describe_body(values, units=None):
     """A body in words from {name: SI value} of ``B``, ``H``, ``b_over_h``, ``mu`` (those
-    given) and of other axes (their ``units``, {name: unit}): ``B 15 cm × H 60 cm (b/h
-    0.25), μ 0.8, excitation.horizontal.building.period 0.6 s``."""
+    given) and of other axes (their ``units``, {name: unit}), named as :data:`SAID` names them
+    or by their path: ``B 15 cm × H 60 cm (b/h 0.25), μ 0.8, building period 0.6 s``."""
     breadth, height, ratio = (values.get(k) for k in ("B", "H", "b_over_h"))
     if height is None and breadth is not None and ratio is not None:
         height = breadth / ratio
@@ -159,8 +170,8 @@ def describe_body(values, units=None):
                  if v is not None] + ([f"b/h {ratio:.3g}"] if ratio is not None else [])
     if values.get("mu") is not None:
         parts.append(f"μ {values['mu']:.3g}")
-    parts += [f"{k} {v:.4g}" + (f" {(units or {}).get(k)}" if (units or {}).get(k, "1") != "1"
-                                else "")
+    parts += [f"{SAID.get(k, k)} {v:.4g}" + (f" {(units or {}).get(k)}"
+                                              if (units or {}).get(k, "1") != "1" else "")
               for k, v in values.items() if k not in ("B", "H", "b_over_h", "mu")]
     return ", ".join(parts)
 

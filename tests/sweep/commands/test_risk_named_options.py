@@ -233,3 +233,19 @@ def test_a_risk_map_may_vary_the_isolator_not_its_ground(tmp_path, axis, refused
     with pytest.raises(FileProblems) as problems:
         load_risk(path)
     assert str(problems.value).startswith(f"grid.{axis}: sets {axis}: the stripes give")
+
+
+def test_grid_bodies_are_named_in_words():
+    """A grid's anchor, isolator and building axes read as a conservator says them, with their
+    units; an axis without a word keeps its dotted path."""
+    from sweep.probability.risk_report import describe_body
+
+    values = {"B": 0.4, "H": 1.6, "mu": 0.6, "restraint.strength": 800.0,
+              "excitation.horizontal.isolator.mu": 0.06,
+              "excitation.horizontal.under.building.height_ratio": 0.667,
+              "solver.max_events": 1000.0}
+    units = {"restraint.strength": "N", "excitation.horizontal.isolator.mu": "1",
+             "excitation.horizontal.under.building.height_ratio": "1"}
+    assert describe_body(values, units) == (
+        "B 40 cm × H 160 cm (b/h 0.25), μ 0.6, anchor 800 N, isolator μ 0.06, "
+        "floor height ratio 0.667, solver.max_events 1000")
